@@ -1,0 +1,50 @@
+#include "dem/compaction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace dem {
+
+std::string CompactionResult::summary() const {
+  std::ostringstream s;
+  s << (converged ? "accepted" : "NOT accepted") << " after " << steps
+    << " steps: worst wall stress error " << worst_stress_error * 100.0
+    << " %, unbalanced-force ratio " << unbalanced_force_ratio;
+  return s.str();
+}
+
+CompactionResult compact_isotropically(Simulation& sim, const CompactionOptions& options) {
+  if (!sim.has_box()) throw std::invalid_argument("compact_isotropically: needs a box of six walls");
+  if (!(options.target_stress > 0.0))
+    throw std::invalid_argument("compact_isotropically: target_stress must be positive");
+  for (Wall& wall : sim.walls()) {
+    wall.mode = WallMode::kStress;
+    wall.target_stress = options.target_stress;
+  }
+  CompactionResult result;
+  int consecutive = 0;
+  const std::int64_t start = sim.step_count();
+  while (sim.step_count() - start < options.max_steps) {
+    sim.run(options.check_every);
+    double worst = 0.0;
+    for (int w = 0; w < static_cast<int>(sim.walls().size()); ++w) {
+      const double stress = sim.wall_forces()[w] / sim.wall_area(w);
+      worst = std::max(worst, std::abs(stress - options.target_stress) / options.target_stress);
+    }
+    result.worst_stress_error = worst;
+    result.unbalanced_force_ratio = sim.unbalanced_force_ratio();
+    const bool ok = worst <= options.stress_tolerance &&
+                    result.unbalanced_force_ratio <= options.max_unbalanced_force;
+    consecutive = ok ? consecutive + 1 : 0;
+    if (consecutive >= 2) {
+      result.converged = true;
+      break;
+    }
+  }
+  result.steps = sim.step_count() - start;
+  return result;
+}
+
+}  // namespace dem

@@ -1,0 +1,74 @@
+#include "dem/rigid_body.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace dem {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Antiderivatives in u = z - s/2 (the distance from the nearer sphere centre along the axis)
+// of the slice integrands, with slice radius^2 = r^2 - u^2 and h = s/2.
+double slice_area_integral(double r, double u) { return r * r * u - u * u * u / 3.0; }
+
+double slice_area_squared_integral(double r, double u) {
+  const double u3 = u * u * u;
+  return r * r * r * r * u - 2.0 * r * r * u3 / 3.0 + u3 * u * u / 5.0;
+}
+
+// Integral of (r^2 - u^2)(u + h)^2 du: the transverse moment's parallel-axis part.
+double slice_area_times_z2_integral(double r, double h, double u) {
+  const double r2 = r * r, u2 = u * u, u3 = u2 * u;
+  return r2 * u3 / 3.0 + h * r2 * u2 + h * h * r2 * u - u3 * u2 / 5.0 - h * u2 * u2 / 2.0 -
+         h * h * u3 / 3.0;
+}
+
+}  // namespace
+
+MassProperties two_sphere_union_properties(double radius, double centre_distance,
+                                           double density) {
+  if (!(radius > 0.0) || !(centre_distance >= 0.0) || !(centre_distance < 2.0 * radius) ||
+      !(density > 0.0)) {
+    throw std::invalid_argument(
+        "two_sphere_union_properties: need radius > 0, 0 <= centre_distance < 2 radius and "
+        "density > 0");
+  }
+  const double r = radius, h = 0.5 * centre_distance;
+  // Each half (z >= 0) is the slab u in [-h, r] of the sphere centred at z = h.
+  auto span = [&](auto&& antiderivative) { return antiderivative(r) - antiderivative(-h); };
+  const double area = span([&](double u) { return slice_area_integral(r, u); });
+  const double area2 = span([&](double u) { return slice_area_squared_integral(r, u); });
+  const double area_z2 = span([&](double u) { return slice_area_times_z2_integral(r, h, u); });
+
+  MassProperties p;
+  p.volume = 2.0 * kPi * area;
+  p.mass = density * p.volume;
+  // A disc of radius a and mass dm: a^2 dm / 2 about its axis, a^2 dm / 4 about a diameter.
+  p.inertia_axial = 2.0 * density * kPi * area2 / 2.0;
+  p.inertia_transverse = 2.0 * density * kPi * (area2 / 4.0 + area_z2);
+  return p;
+}
+
+MassProperties sphere_properties(double radius, double density) {
+  return two_sphere_union_properties(radius, 0.0, density);
+}
+
+Eigen::Quaterniond rotate_symmetric_top(const Eigen::Quaterniond& orientation,
+                                        const Eigen::Vector3d& angular_momentum,
+                                        double inertia_axial, double inertia_transverse,
+                                        double dt) {
+  const double l_norm = angular_momentum.norm();
+  if (l_norm == 0.0) return orientation;
+  const Eigen::Vector3d axis = body_axis(orientation);
+  const double precession_angle = dt * l_norm / inertia_transverse;
+  const double spin_angle =
+      dt * angular_momentum.dot(axis) * (1.0 / inertia_axial - 1.0 / inertia_transverse);
+  const Eigen::Quaterniond precession(
+      Eigen::AngleAxisd(precession_angle, angular_momentum / l_norm));
+  // The spin is about the body axis, i.e. applied on the right in the body frame.
+  const Eigen::Quaterniond spin(Eigen::AngleAxisd(spin_angle, Eigen::Vector3d::UnitX()));
+  return (precession * orientation * spin).normalized();
+}
+
+}  // namespace dem

@@ -1,0 +1,434 @@
+#include "dem/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "dem/rigid_body.h"
+
+namespace dem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Cundall's local damping: each component loses alpha |F_k| against the sign of its velocity.
+inline Eigen::Vector3d locally_damped(const Eigen::Vector3d& f, const Eigen::Vector3d& v,
+                                      double alpha) {
+  Eigen::Vector3d out = f;
+  for (int k = 0; k < 3; ++k) {
+    if (v[k] > 0.0) out[k] -= alpha * std::abs(f[k]);
+    else if (v[k] < 0.0) out[k] += alpha * std::abs(f[k]);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string SimulationOptions::validate() const {
+  std::ostringstream error;
+  if (!(time_step >= 0.0 && std::isfinite(time_step)))
+    error << "time_step must be >= 0 (0 = automatic), got " << time_step << " s; ";
+  if (!(time_step_safety > 0.0 && time_step_safety <= 1.0))
+    error << "time_step_safety must lie in (0, 1], got " << time_step_safety << "; ";
+  if (!(skin_ratio > 0.0 && skin_ratio <= 2.0))
+    error << "skin_ratio must lie in (0, 2], got " << skin_ratio << "; ";
+  if (sort_every_builds < 0) error << "sort_every_builds must be >= 0; ";
+  if (!gravity.allFinite()) error << "gravity must be finite; ";
+  if (!(local_damping >= 0.0 && local_damping < 1.0))
+    error << "local_damping must lie in [0, 1), got " << local_damping << "; ";
+  if (!(density_scaling >= 1.0 && std::isfinite(density_scaling)))
+    error << "density_scaling must be >= 1, got " << density_scaling << "; ";
+  if (!(max_overlap_ratio > 0.0 && max_overlap_ratio < 1.0))
+    error << "max_overlap_ratio must lie in (0, 1), got " << max_overlap_ratio << "; ";
+  error << servo.validate();
+  return error.str();
+}
+
+Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactParameters contact,
+                       SimulationOptions options)
+    : particles_(std::move(particles)),
+      walls_(std::move(walls)),
+      contact_(contact),
+      options_(std::move(options)) {
+  std::string error = contact_.validate() + options_.validate();
+  if (particles_.num_bodies() == 0) error += "the scene has no bodies; ";
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const Wall& wall = walls_[w];
+    if (wall.axis < 0 || wall.axis > 2) error += "wall " + std::to_string(w) + " axis not 0-2; ";
+    if (wall.mode == WallMode::kStress && !(wall.target_stress >= 0.0))
+      error += "wall " + std::to_string(w) + " target_stress must be >= 0; ";
+  }
+  if (!error.empty()) throw std::invalid_argument("Simulation: " + error);
+  find_box_walls();
+  for (const Wall& wall : walls_)
+    if (wall.mode == WallMode::kStress && !has_box())
+      throw std::invalid_argument(
+          "Simulation: a stress-controlled wall needs a full box of six walls to define its "
+          "area");
+
+  // Density scaling multiplies every mass and inertia.
+  const double scale = options_.density_scaling;
+  for (int b = 0; b < particles_.num_bodies(); ++b) {
+    particles_.mass[b] *= scale;
+    particles_.inertia_axial[b] *= scale;
+    particles_.inertia_transverse[b] *= scale;
+  }
+
+  features_.clumps = particles_.has_clumps();
+  features_.friction = contact_.friction > 0.0;
+  features_.wall_friction = contact_.wall_friction > 0.0 && !walls_.empty();
+  features_.gravity = options_.gravity.squaredNorm() > 0.0;
+  features_.local_damping = options_.local_damping > 0.0;
+  features_.viscous_damping = contact_.normal_damping_ratio > 0.0;
+
+  double r_max = 0.0;
+  critical_dt_ = std::numeric_limits<double>::infinity();
+  for (int b = 0; b < particles_.num_bodies(); ++b) {
+    const int s = particles_.first_sphere[b];
+    const double r = particles_.sphere_radius[s];
+    if (!(r > 0.0)) throw std::invalid_argument("Simulation: a sphere radius is not positive");
+    r_max = std::max(r_max, r);
+    const double lever = std::abs(particles_.sphere_offset[s]) + r;
+    const double m_eff = std::min({particles_.mass[b], particles_.inertia_transverse[b] / (lever * lever),
+                                   particles_.inertia_axial[b] / (r * r)});
+    critical_dt_ = std::min(critical_dt_,
+                            std::sqrt(m_eff / wall_normal_stiffness(contact_.youngs_modulus, r)));
+  }
+  skin_ = options_.skin_ratio * 2.0 * r_max;
+  dt_ = options_.time_step > 0.0 ? options_.time_step : options_.time_step_safety * critical_dt_;
+  // A single undamped contact is unstable beyond 2 / omega; refuse such a step outright.
+  if (dt_ > 2.0 * critical_dt_) {
+    std::ostringstream msg;
+    msg << "Simulation: time_step " << dt_ << " s exceeds the stable limit " << 2.0 * critical_dt_
+        << " s of a single contact (critical step " << critical_dt_
+        << " s); use time_step_safety <= 0.5 or a smaller time_step";
+    throw std::invalid_argument(msg.str());
+  }
+  particles_.update_sphere_positions();
+  wall_force_.assign(walls_.size(), 0.0);
+  wall_stiffness_.assign(walls_.size(), 0.0);
+  wall_last_move_.assign(walls_.size(), 0.0);
+}
+
+void Simulation::find_box_walls() {
+  int found[3][2] = {{-1, -1}, {-1, -1}, {-1, -1}};
+  for (int w = 0; w < static_cast<int>(walls_.size()); ++w) {
+    int& slot = found[walls_[w].axis][walls_[w].upper ? 1 : 0];
+    if (slot >= 0) return;  // two walls on one side: not a box
+    slot = w;
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side)
+      if (found[a][side] < 0) return;
+  std::copy(&found[0][0], &found[0][0] + 6, &box_walls_[0][0]);
+}
+
+double Simulation::box_volume() const {
+  if (!has_box()) return 0.0;
+  double v = 1.0;
+  for (int a = 0; a < 3; ++a)
+    v *= walls_[box_walls_[a][1]].position - walls_[box_walls_[a][0]].position;
+  return v;
+}
+
+double Simulation::wall_area(int w) const {
+  if (!has_box()) return 0.0;
+  double area = 1.0;
+  for (int a = 0; a < 3; ++a)
+    if (a != walls_[w].axis)
+      area *= walls_[box_walls_[a][1]].position - walls_[box_walls_[a][0]].position;
+  return area;
+}
+
+void Simulation::rebuild_contacts() {
+  std::vector<int> old_to_new;
+  const bool sort_now = options_.sort_every_builds > 0 &&
+                        contacts_.num_builds() % options_.sort_every_builds == 0;
+  if (sort_now) old_to_new = particles_.sort_spatially(skin_ / options_.skin_ratio + skin_);
+  contacts_.build(particles_, walls_, skin_, sort_now ? &old_to_new : nullptr);
+  const int slots = contacts_.num_slots();
+  slot_force_.assign(slots, Eigen::Vector3d::Zero());
+  slot_moment_.assign(slots, Eigen::Vector3d::Zero());
+  slot_overlap_.assign(slots, 0.0);
+  slot_sliding_.assign(slots, 0);
+  rebuild_due_ = false;
+}
+
+template <bool kFriction, bool kViscous>
+void Simulation::compute_pair_forces() {
+  const Particles& P = particles_;
+  ContactList& C = contacts_;
+  const int np = C.num_pairs();
+  const double young = contact_.youngs_modulus;
+  const double xi = contact_.stiffness_ratio, mu = contact_.friction;
+  const double beta = contact_.normal_damping_ratio, dt = dt_;
+  double worst_ratio = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : worst_ratio)
+  for (int p = 0; p < np; ++p) {
+    const int i = C.pair_i[p], j = C.pair_j[p];
+    const double ri = P.sphere_radius[i], rj = P.sphere_radius[j];
+    const Eigen::Vector3d d = P.sphere_position[j] - P.sphere_position[i];
+    const double reach = ri + rj, d2 = d.squaredNorm();
+    if (d2 >= reach * reach) {
+      if (C.pair_touching[p]) {  // separation erases the tangential history
+        C.pair_touching[p] = 0;
+        C.pair_tangential[p].setZero();
+        slot_force_[p].setZero();
+        slot_moment_[p].setZero();
+        slot_overlap_[p] = 0.0;
+        slot_sliding_[p] = 0;
+      }
+      continue;
+    }
+    const double dist = std::sqrt(d2);
+    const Eigen::Vector3d n = d / dist;
+    const double overlap = reach - dist;
+    const double k = normal_stiffness(young, ri, rj);
+    double fn = k * overlap;
+    Eigen::Vector3d ft = Eigen::Vector3d::Zero();
+    bool sliding = false;
+    if constexpr (kFriction || kViscous) {
+      const int a = P.sphere_body[i], b = P.sphere_body[j];
+      const Eigen::Vector3d point = P.sphere_position[i] + (ri - 0.5 * overlap) * n;
+      const Eigen::Vector3d v_rel =
+          P.velocity[b] + P.angular_velocity[b].cross(point - P.position[b]) - P.velocity[a] -
+          P.angular_velocity[a].cross(point - P.position[a]);
+      const double vn = v_rel.dot(n);
+      if constexpr (kViscous) {
+        const double m_red = P.mass[a] * P.mass[b] / (P.mass[a] + P.mass[b]);
+        fn = std::max(0.0, fn - 2.0 * beta * std::sqrt(m_red * k) * vn);
+      }
+      if constexpr (kFriction) {
+        if (C.pair_touching[p]) {
+          const double twirl = 0.5 * dt * (P.angular_velocity[a] + P.angular_velocity[b]).dot(n);
+          ft = rotate_with_contact_frame(C.pair_tangential[p], C.pair_normal[p], n, twirl);
+        }
+        ft -= (xi * k * dt) * (v_rel - vn * n);
+        sliding = apply_coulomb_limit(ft, mu * fn);
+        C.pair_tangential[p] = ft;
+      }
+    }
+    C.pair_normal[p] = n;
+    C.pair_touching[p] = 1;
+    slot_force_[p] = fn * n + ft;
+    slot_moment_[p] = n.cross(ft);
+    slot_overlap_[p] = overlap;
+    slot_sliding_[p] = sliding;
+    worst_ratio = std::max(worst_ratio, overlap / std::min(ri, rj));
+  }
+  if (worst_ratio > options_.max_overlap_ratio) {
+    std::ostringstream msg;
+    msg << "unstable run at step " << step_count_ << ": an overlap reached " << worst_ratio
+        << " of the sphere radius (limit " << options_.max_overlap_ratio << "); time step " << dt_
+        << " s, critical step " << critical_dt_
+        << " s. Reduce the time step or the loading rate, or raise the stiffness.";
+    throw std::runtime_error(msg.str());
+  }
+}
+
+template <bool kWallFriction, bool kViscous>
+void Simulation::compute_wall_forces() {
+  const Particles& P = particles_;
+  ContactList& C = contacts_;
+  const int np = C.num_pairs(), nw = C.num_wall_candidates();
+  const double young = contact_.youngs_modulus;
+  const double xi = contact_.stiffness_ratio, mu = contact_.wall_friction;
+  std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
+  std::fill(wall_stiffness_.begin(), wall_stiffness_.end(), 0.0);
+  for (int k = 0; k < nw; ++k) {
+    const int s = C.wall_sphere[k], w = C.wall_index[k], slot = np + k;
+    const Wall& wall = walls_[w];
+    const double r = P.sphere_radius[s];
+    const double along = P.sphere_position[s][wall.axis] - wall.position;
+    const double overlap = r - (wall.upper ? -along : along);
+    if (overlap <= 0.0) {
+      if (C.wall_touching[k]) {
+        C.wall_touching[k] = 0;
+        C.wall_tangential[k].setZero();
+        slot_force_[slot].setZero();
+        slot_moment_[slot].setZero();
+        slot_overlap_[slot] = 0.0;
+        slot_sliding_[slot] = 0;
+      }
+      continue;
+    }
+    const Eigen::Vector3d n = wall.inward_normal();
+    const double stiffness = wall_normal_stiffness(young, r);
+    double fn = stiffness * overlap;
+    Eigen::Vector3d ft = Eigen::Vector3d::Zero();
+    bool sliding = false;
+    if constexpr (kWallFriction || kViscous) {
+      const int b = P.sphere_body[s];
+      const Eigen::Vector3d point = P.sphere_position[s] - (r - 0.5 * overlap) * n;
+      Eigen::Vector3d v_rel = P.velocity[b] + P.angular_velocity[b].cross(point - P.position[b]);
+      v_rel[wall.axis] -= wall.velocity;
+      const double vn = v_rel.dot(n);
+      if constexpr (kViscous) {
+        fn = std::max(0.0, fn - 2.0 * contact_.normal_damping_ratio *
+                                    std::sqrt(P.mass[b] * stiffness) * vn);
+      }
+      if constexpr (kWallFriction) {
+        if (C.wall_touching[k]) {
+          const double twirl = 0.5 * dt_ * P.angular_velocity[b].dot(n);
+          ft = rotate_with_contact_frame(C.wall_tangential[k], n, n, twirl);
+        }
+        ft -= (xi * stiffness * dt_) * (v_rel - vn * n);
+        sliding = apply_coulomb_limit(ft, mu * fn);
+        C.wall_tangential[k] = ft;
+      }
+    }
+    C.wall_touching[k] = 1;
+    slot_force_[slot] = fn * n + ft;
+    slot_moment_[slot] = n.cross(ft);
+    slot_overlap_[slot] = overlap;
+    slot_sliding_[slot] = sliding;
+    wall_force_[w] += fn;
+    wall_stiffness_[w] += stiffness;
+  }
+}
+
+template <bool kClumps, bool kMoments>
+void Simulation::sum_body_forces() {
+  Particles& P = particles_;
+  const ContactList& C = contacts_;
+  const int nb = P.num_bodies();
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < nb; ++b) {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+    const int s_end = P.first_sphere[b] + P.num_body_spheres[b];
+    for (int s = P.first_sphere[b]; s < s_end; ++s) {
+      Eigen::Vector3d f_s = Eigen::Vector3d::Zero();
+      for (int e = C.incidence_offset[s]; e < C.incidence_offset[s + 1]; ++e) {
+        const int code = C.incidence[e], slot = code >> 1;
+        if (slot_overlap_[slot] == 0.0) continue;
+        if (code & 1) f_s += slot_force_[slot];
+        else f_s -= slot_force_[slot];
+        if constexpr (kMoments) {
+          // Lever from the sphere centre to the contact point (mid-overlap): the moment is
+          // -(r - overlap/2) n x f for either body of the contact.
+          torque -= (P.sphere_radius[s] - 0.5 * slot_overlap_[slot]) * slot_moment_[slot];
+        }
+      }
+      force += f_s;
+      if constexpr (kClumps) torque += (P.sphere_position[s] - P.position[b]).cross(f_s);
+    }
+    P.force[b] = force;
+    P.torque[b] = torque;
+  }
+}
+
+template <bool kClumps, bool kRotation, bool kGravity, bool kDamping>
+void Simulation::integrate() {
+  Particles& P = particles_;
+  const int nb = P.num_bodies();
+  const double dt = dt_, alpha = options_.local_damping;
+  const Eigen::Vector3d g = options_.gravity;
+  const auto& reference = contacts_.build_position;
+  double max_move2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_move2)
+  for (int b = 0; b < nb; ++b) {
+    Eigen::Vector3d f = P.force[b];
+    if constexpr (kDamping) f = locally_damped(f, P.velocity[b], alpha);
+    Eigen::Vector3d acceleration = f / P.mass[b];
+    if constexpr (kGravity) acceleration += g;
+    P.velocity[b] += dt * acceleration;
+    P.position[b] += dt * P.velocity[b];
+    const int s0 = P.first_sphere[b];
+    if constexpr (kRotation) {
+      Eigen::Vector3d t = P.torque[b];
+      if constexpr (kDamping) t = locally_damped(t, P.angular_velocity[b], alpha);
+      P.angular_momentum[b] += dt * t;
+      if (kClumps && P.num_body_spheres[b] == 2) {
+        const Eigen::Vector3d& L = P.angular_momentum[b];
+        P.orientation[b] = rotate_symmetric_top(P.orientation[b], L, P.inertia_axial[b],
+                                                P.inertia_transverse[b], dt);
+        const Eigen::Vector3d axis = body_axis(P.orientation[b]);
+        P.angular_velocity[b] = symmetric_top_angular_velocity(L, axis, P.inertia_axial[b],
+                                                               P.inertia_transverse[b]);
+        for (int s = s0; s < s0 + 2; ++s) {
+          P.sphere_position[s] = P.position[b] + P.sphere_offset[s] * axis;
+          max_move2 = std::max(max_move2, (P.sphere_position[s] - reference[s]).squaredNorm());
+        }
+        continue;
+      }
+      // A sphere's orientation does not affect its contacts: only its spin is tracked.
+      P.angular_velocity[b] = P.angular_momentum[b] / P.inertia_axial[b];
+    }
+    P.sphere_position[s0] = P.position[b];
+    max_move2 = std::max(max_move2, (P.sphere_position[s0] - reference[s0]).squaredNorm());
+  }
+  if (!std::isfinite(max_move2)) {
+    std::ostringstream msg;
+    msg << "unstable run at step " << step_count_ << ": a body position is no longer finite; time step "
+        << dt_ << " s, critical step " << critical_dt_ << " s";
+    throw std::runtime_error(msg.str());
+  }
+  max_sphere_move_ = std::sqrt(max_move2);
+}
+
+void Simulation::schedule_rebuild_if_needed() {
+  double max_wall_move = 0.0;
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    max_wall_move = std::max(max_wall_move,
+                             std::abs(walls_[w].position - contacts_.build_wall_position[w]));
+  // A pair can close by twice the largest move, a sphere and a wall by the sum of theirs.
+  if (2.0 * max_sphere_move_ >= skin_ || max_sphere_move_ + max_wall_move >= skin_)
+    rebuild_due_ = true;
+}
+
+void Simulation::move_walls() {
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    Wall& wall = walls_[w];
+    if (wall.mode == WallMode::kStress) {
+      const double target = wall.target_stress * wall_area(static_cast<int>(w));
+      const double inward = servo_displacement(options_.servo, wall_force_[w], target,
+                                               wall_stiffness_[w], wall_last_move_[w], dt_);
+      wall_last_move_[w] = inward;
+      const double along = wall.upper ? -inward : inward;
+      wall.velocity = along / dt_;
+    }
+    wall.position += wall.velocity * dt_;
+  }
+}
+
+void Simulation::step() {
+  auto start = Clock::now();
+  if (rebuild_due_) rebuild_contacts();
+  timings_.detection += seconds_since(start);
+
+  start = Clock::now();
+  with_flags([&](auto friction, auto viscous) {
+    compute_pair_forces<decltype(friction)::value, decltype(viscous)::value>();
+  }, features_.friction, features_.viscous_damping);
+  with_flags([&](auto friction, auto viscous) {
+    compute_wall_forces<decltype(friction)::value, decltype(viscous)::value>();
+  }, features_.wall_friction, features_.viscous_damping);
+  with_flags([&](auto clumps, auto moments) {
+    sum_body_forces<decltype(clumps)::value, decltype(moments)::value>();
+  }, features_.clumps, features_.friction || features_.wall_friction);
+  timings_.forces += seconds_since(start);
+
+  start = Clock::now();
+  with_flags([&](auto clumps, auto rotation, auto gravity, auto damping) {
+    integrate<decltype(clumps)::value, decltype(rotation)::value, decltype(gravity)::value,
+              decltype(damping)::value>();
+  }, features_.clumps, features_.rotation(), features_.gravity, features_.local_damping);
+  move_walls();
+  schedule_rebuild_if_needed();
+  timings_.integration += seconds_since(start);
+
+  time_ += dt_;
+  ++step_count_;
+}
+
+void Simulation::run(std::int64_t num_steps) {
+  for (std::int64_t n = 0; n < num_steps; ++n) step();
+}
+
+}  // namespace dem
