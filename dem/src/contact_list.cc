@@ -22,7 +22,7 @@ std::uint64_t pair_key(int i, int j) {
 }  // namespace
 
 void ContactList::build(const Particles& particles, const std::vector<Wall>& walls, double skin,
-                        const std::vector<int>* old_to_new) {
+                        const std::vector<int>* old_to_new, int min_parallel_items) {
   if (!(skin > 0.0)) throw std::invalid_argument("ContactList: the Verlet skin must be positive");
   skin_ = skin;
   const int ns = particles.num_spheres();
@@ -52,7 +52,7 @@ void ContactList::build(const Particles& particles, const std::vector<Wall>& wal
   double r_max = 0.0;
   for (double r : particles.sphere_radius) r_max = std::max(r_max, r);
   build_cell_grid(particles, 2.0 * r_max + skin);
-  find_pairs(particles, skin);
+  find_pairs(particles, skin, min_parallel_items);
   find_wall_candidates(particles, walls, skin);
 
   // Merge the saved history into the new lists (both sorted by key).
@@ -127,12 +127,13 @@ void ContactList::build_cell_grid(const Particles& particles, double cell_size) 
   for (int s = 0; s < ns; ++s) cell_spheres_[fill[sphere_cell_[s]]++] = s;
 }
 
-void ContactList::find_pairs(const Particles& particles, double skin) {
+void ContactList::find_pairs(const Particles& particles, double skin,
+                             int min_parallel_items) {
   const int ns = particles.num_spheres();
   const auto& x = particles.sphere_position;
   const auto& radius = particles.sphere_radius;
   const auto& body = particles.sphere_body;
-  const int nthreads = omp_get_max_threads();
+  const int nthreads = ns >= min_parallel_items ? omp_get_max_threads() : 1;
   std::vector<std::vector<int>> local_i(nthreads), local_j(nthreads);
 
   // Each thread takes one contiguous range of i (static schedule), so concatenating the

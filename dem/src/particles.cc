@@ -42,7 +42,6 @@ int Particles::add_body(const BodyShape& shape, double density, const Eigen::Vec
 
 void Particles::update_sphere_positions() {
   const int nb = num_bodies();
-#pragma omp parallel for schedule(static)
   for (int b = 0; b < nb; ++b) {
     const int s0 = first_sphere[b];
     if (num_body_spheres[b] == 1) {

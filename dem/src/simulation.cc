@@ -39,6 +39,7 @@ std::string SimulationOptions::validate() const {
   if (!(skin_ratio > 0.0 && skin_ratio <= 2.0))
     error << "skin_ratio must lie in (0, 2], got " << skin_ratio << "; ";
   if (sort_every_builds < 0) error << "sort_every_builds must be >= 0; ";
+  if (min_parallel_items < 1) error << "min_parallel_items must be >= 1; ";
   if (!gravity.allFinite()) error << "gravity must be finite; ";
   if (!(local_damping >= 0.0 && local_damping < 1.0))
     error << "local_damping must lie in [0, 1), got " << local_damping << "; ";
@@ -151,7 +152,8 @@ void Simulation::rebuild_contacts() {
   const bool sort_now = options_.sort_every_builds > 0 &&
                         contacts_.num_builds() % options_.sort_every_builds == 0;
   if (sort_now) old_to_new = particles_.sort_spatially(skin_ / options_.skin_ratio + skin_);
-  contacts_.build(particles_, walls_, skin_, sort_now ? &old_to_new : nullptr);
+  contacts_.build(particles_, walls_, skin_, sort_now ? &old_to_new : nullptr,
+                  options_.min_parallel_items);
   const int slots = contacts_.num_slots();
   slot_force_.assign(slots, Eigen::Vector3d::Zero());
   slot_moment_.assign(slots, Eigen::Vector3d::Zero());
@@ -169,7 +171,8 @@ void Simulation::compute_pair_forces() {
   const double xi = contact_.stiffness_ratio, mu = contact_.friction;
   const double beta = contact_.normal_damping_ratio, dt = dt_;
   double worst_ratio = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : worst_ratio)
+#pragma omp parallel for schedule(static) reduction(max : worst_ratio) \
+    if (np >= options_.min_parallel_items)
   for (int p = 0; p < np; ++p) {
     const int i = C.pair_i[p], j = C.pair_j[p];
     const double ri = P.sphere_radius[i], rj = P.sphere_radius[j];
@@ -298,7 +301,7 @@ void Simulation::sum_body_forces() {
   Particles& P = particles_;
   const ContactList& C = contacts_;
   const int nb = P.num_bodies();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nb >= options_.min_parallel_items)
   for (int b = 0; b < nb; ++b) {
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
     const int s_end = P.first_sphere[b] + P.num_body_spheres[b];
@@ -331,7 +334,8 @@ void Simulation::integrate() {
   const Eigen::Vector3d g = options_.gravity;
   const auto& reference = contacts_.build_position;
   double max_move2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_move2)
+#pragma omp parallel for schedule(static) reduction(max : max_move2) \
+    if (nb >= options_.min_parallel_items)
   for (int b = 0; b < nb; ++b) {
     Eigen::Vector3d f = P.force[b];
     if constexpr (kDamping) f = locally_damped(f, P.velocity[b], alpha);

@@ -22,8 +22,9 @@ class ContactList {
   /// Rebuilds the candidate lists for the current positions with a Verlet skin `skin` [m] and
   /// carries over the history of the contacts that were touching. `old_to_new`, when the
   /// spheres were re-ordered since the last build, maps each old sphere index to its new one.
+  /// Loops over fewer than `min_parallel_items` spheres run on one thread.
   void build(const Particles& particles, const std::vector<Wall>& walls, double skin,
-             const std::vector<int>* old_to_new = nullptr);
+             const std::vector<int>* old_to_new = nullptr, int min_parallel_items = 1);
 
   int num_pairs() const { return static_cast<int>(pair_i.size()); }
   int num_wall_candidates() const { return static_cast<int>(wall_sphere.size()); }
@@ -52,7 +53,7 @@ class ContactList {
 
  private:
   void build_cell_grid(const Particles& particles, double cell_size);
-  void find_pairs(const Particles& particles, double skin);
+  void find_pairs(const Particles& particles, double skin, int min_parallel_items);
   void find_wall_candidates(const Particles& particles, const std::vector<Wall>& walls,
                             double skin);
   void build_incidence(int num_spheres);

@@ -13,7 +13,7 @@ T deterministic_sum(int n, const T& zero, BlockSum&& block_sum) {
   constexpr int kBlock = 1024;
   const int num_blocks = (n + kBlock - 1) / kBlock;
   std::vector<T> partial(num_blocks, zero);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (num_blocks > 1)
   for (int b = 0; b < num_blocks; ++b)
     partial[b] = block_sum(b * kBlock, std::min(n, (b + 1) * kBlock));
   T total = zero;

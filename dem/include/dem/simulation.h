@@ -42,6 +42,9 @@ struct SimulationOptions {
   /// A step whose largest overlap exceeds this fraction of the smaller radius is an error.
   double max_overlap_ratio = 0.25;
   ServoParameters servo;
+  /// Loops over fewer items than this run on one thread: a small scene is faster without the
+  /// fork/join, and oversubscribed cores (parallel tests) do not spin.
+  int min_parallel_items = 2048;
 
   std::string validate() const;
 };
