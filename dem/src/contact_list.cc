@@ -202,6 +202,12 @@ void ContactList::find_wall_candidates(const Particles& particles,
   }
 }
 
+void ContactList::restore(double skin, std::int64_t num_builds, int num_spheres) {
+  skin_ = skin;
+  num_builds_ = num_builds;
+  build_incidence(num_spheres);
+}
+
 void ContactList::build_incidence(int num_spheres) {
   const int np = num_pairs();
   incidence_offset.assign(num_spheres + 1, 0);

@@ -54,7 +54,7 @@ double Simulation::kinetic_energy() const {
   return deterministic_sum(P.num_bodies(), 0.0, [&](int begin, int end) {
     double e = 0.0;
     for (int b = begin; b < end; ++b)
-      e += 0.5 * P.mass[b] * P.velocity[b].squaredNorm() +
+      e += 0.5 * options_.density_scaling * P.mass[b] * P.velocity[b].squaredNorm() +
            0.5 * P.angular_momentum[b].dot(P.angular_velocity[b]);
     return e;
   });
@@ -65,7 +65,8 @@ double Simulation::unbalanced_force_ratio() const {
   const Eigen::Vector3d gravity = options_.gravity;
   const double net = deterministic_sum(P.num_bodies(), 0.0, [&](int begin, int end) {
     double s = 0.0;
-    for (int b = begin; b < end; ++b) s += (P.force[b] + P.mass[b] * gravity).norm();
+    for (int b = begin; b < end; ++b)
+      s += (P.force[b] + options_.density_scaling * P.mass[b] * gravity).norm();
     return s;
   });
   int touching = 0;

@@ -57,6 +57,46 @@ Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactPara
       walls_(std::move(walls)),
       contact_(contact),
       options_(std::move(options)) {
+  initialise();
+  particles_.update_sphere_positions();
+}
+
+Simulation::Simulation(SimulationState state, ContactParameters contact,
+                       SimulationOptions options)
+    : particles_(std::move(state.particles)),
+      walls_(std::move(state.walls)),
+      contact_(contact),
+      options_(std::move(options)),
+      contacts_(std::move(state.contacts)),
+      time_(state.time),
+      step_count_(state.step_count),
+      rebuild_due_(state.rebuild_due) {
+  initialise();
+  max_sphere_move_ = state.max_sphere_move;
+  if (state.wall_last_move.size() != walls_.size())
+    throw std::invalid_argument("Simulation: the saved state has one servo move per wall");
+  wall_last_move_ = std::move(state.wall_last_move);
+  const int slots = contacts_.num_slots();
+  slot_force_.assign(slots, Eigen::Vector3d::Zero());
+  slot_moment_.assign(slots, Eigen::Vector3d::Zero());
+  slot_overlap_.assign(slots, 0.0);
+  slot_sliding_.assign(slots, 0);
+}
+
+SimulationState Simulation::state() const {
+  SimulationState s;
+  s.particles = particles_;
+  s.walls = walls_;
+  s.contacts = contacts_;
+  s.time = time_;
+  s.step_count = step_count_;
+  s.rebuild_due = rebuild_due_;
+  s.max_sphere_move = max_sphere_move_;
+  s.wall_last_move = wall_last_move_;
+  return s;
+}
+
+void Simulation::initialise() {
   std::string error = contact_.validate() + options_.validate();
   if (particles_.num_bodies() == 0) error += "the scene has no bodies; ";
   for (std::size_t w = 0; w < walls_.size(); ++w) {
@@ -73,14 +113,6 @@ Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactPara
           "Simulation: a stress-controlled wall needs a full box of six walls to define its "
           "area");
 
-  // Density scaling multiplies every mass and inertia.
-  const double scale = options_.density_scaling;
-  for (int b = 0; b < particles_.num_bodies(); ++b) {
-    particles_.mass[b] *= scale;
-    particles_.inertia_axial[b] *= scale;
-    particles_.inertia_transverse[b] *= scale;
-  }
-
   features_.clumps = particles_.has_clumps();
   features_.friction = contact_.friction > 0.0;
   features_.wall_friction = contact_.wall_friction > 0.0 && !walls_.empty();
@@ -96,7 +128,10 @@ Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactPara
     if (!(r > 0.0)) throw std::invalid_argument("Simulation: a sphere radius is not positive");
     r_max = std::max(r_max, r);
     const double lever = std::abs(particles_.sphere_offset[s]) + r;
-    const double m_eff = std::min({particles_.mass[b], particles_.inertia_transverse[b] / (lever * lever),
+    // Density scaling multiplies every mass and inertia in the dynamics.
+    const double m_eff = options_.density_scaling *
+                         std::min({particles_.mass[b],
+                                   particles_.inertia_transverse[b] / (lever * lever),
                                    particles_.inertia_axial[b] / (r * r)});
     critical_dt_ = std::min(critical_dt_,
                             std::sqrt(m_eff / wall_normal_stiffness(contact_.youngs_modulus, r)));
@@ -111,7 +146,6 @@ Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactPara
         << " s); use time_step_safety <= 0.5 or a smaller time_step";
     throw std::invalid_argument(msg.str());
   }
-  particles_.update_sphere_positions();
   wall_force_.assign(walls_.size(), 0.0);
   wall_stiffness_.assign(walls_.size(), 0.0);
   wall_last_move_.assign(walls_.size(), 0.0);
@@ -145,6 +179,11 @@ double Simulation::wall_area(int w) const {
     if (a != walls_[w].axis)
       area *= walls_[box_walls_[a][1]].position - walls_[box_walls_[a][0]].position;
   return area;
+}
+
+double Simulation::wall_stress(int axis) const {
+  const int lower = box_wall(axis, false), upper = box_wall(axis, true);
+  return 0.5 * (wall_force_[lower] / wall_area(lower) + wall_force_[upper] / wall_area(upper));
 }
 
 void Simulation::rebuild_contacts() {
@@ -204,7 +243,8 @@ void Simulation::compute_pair_forces() {
           P.angular_velocity[a].cross(point - P.position[a]);
       const double vn = v_rel.dot(n);
       if constexpr (kViscous) {
-        const double m_red = P.mass[a] * P.mass[b] / (P.mass[a] + P.mass[b]);
+        const double m_red =
+            options_.density_scaling * P.mass[a] * P.mass[b] / (P.mass[a] + P.mass[b]);
         fn = std::max(0.0, fn - 2.0 * beta * std::sqrt(m_red * k) * vn);
       }
       if constexpr (kFriction) {
@@ -274,7 +314,8 @@ void Simulation::compute_wall_forces() {
       const double vn = v_rel.dot(n);
       if constexpr (kViscous) {
         fn = std::max(0.0, fn - 2.0 * contact_.normal_damping_ratio *
-                                    std::sqrt(P.mass[b] * stiffness) * vn);
+                                    std::sqrt(options_.density_scaling * P.mass[b] * stiffness) *
+                                    vn);
       }
       if constexpr (kWallFriction) {
         if (C.wall_touching[k]) {
@@ -331,6 +372,7 @@ void Simulation::integrate() {
   Particles& P = particles_;
   const int nb = P.num_bodies();
   const double dt = dt_, alpha = options_.local_damping;
+  const double inv_scale = 1.0 / options_.density_scaling;  // masses and inertias scale alike
   const Eigen::Vector3d g = options_.gravity;
   const auto& reference = contacts_.build_position;
   double max_move2 = 0.0;
@@ -339,7 +381,7 @@ void Simulation::integrate() {
   for (int b = 0; b < nb; ++b) {
     Eigen::Vector3d f = P.force[b];
     if constexpr (kDamping) f = locally_damped(f, P.velocity[b], alpha);
-    Eigen::Vector3d acceleration = f / P.mass[b];
+    Eigen::Vector3d acceleration = (inv_scale / P.mass[b]) * f;
     if constexpr (kGravity) acceleration += g;
     P.velocity[b] += dt * acceleration;
     P.position[b] += dt * P.velocity[b];
@@ -350,11 +392,11 @@ void Simulation::integrate() {
       P.angular_momentum[b] += dt * t;
       if (kClumps && P.num_body_spheres[b] == 2) {
         const Eigen::Vector3d& L = P.angular_momentum[b];
-        P.orientation[b] = rotate_symmetric_top(P.orientation[b], L, P.inertia_axial[b],
-                                                P.inertia_transverse[b], dt);
+        const double ia = P.inertia_axial[b] * options_.density_scaling;
+        const double it = P.inertia_transverse[b] * options_.density_scaling;
+        P.orientation[b] = rotate_symmetric_top(P.orientation[b], L, ia, it, dt);
         const Eigen::Vector3d axis = body_axis(P.orientation[b]);
-        P.angular_velocity[b] = symmetric_top_angular_velocity(L, axis, P.inertia_axial[b],
-                                                               P.inertia_transverse[b]);
+        P.angular_velocity[b] = symmetric_top_angular_velocity(L, axis, ia, it);
         for (int s = s0; s < s0 + 2; ++s) {
           P.sphere_position[s] = P.position[b] + P.sphere_offset[s] * axis;
           max_move2 = std::max(max_move2, (P.sphere_position[s] - reference[s]).squaredNorm());
@@ -362,7 +404,7 @@ void Simulation::integrate() {
         continue;
       }
       // A sphere's orientation does not affect its contacts: only its spin is tracked.
-      P.angular_velocity[b] = P.angular_momentum[b] / P.inertia_axial[b];
+      P.angular_velocity[b] = (inv_scale / P.inertia_axial[b]) * P.angular_momentum[b];
     }
     P.sphere_position[s0] = P.position[b];
     max_move2 = std::max(max_move2, (P.sphere_position[s0] - reference[s0]).squaredNorm());

@@ -51,6 +51,10 @@ class ContactList {
 
   std::int64_t num_builds() const { return num_builds_; }
 
+  /// Restores a list read back from a checkpoint: the topology and history arrays must already
+  /// be filled; this sets the counters and derives the incidence lists.
+  void restore(double skin, std::int64_t num_builds, int num_spheres);
+
  private:
   void build_cell_grid(const Particles& particles, double cell_size);
   void find_pairs(const Particles& particles, double skin, int min_parallel_items);

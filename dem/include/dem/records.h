@@ -39,6 +39,18 @@ struct ParticleRecord {
   Vec3Record angular_velocity{};///< world frame [rad/s]
 };
 
+/// State of one planar wall.
+struct WallRecord {
+  std::int32_t axis = 0;           ///< 0 = x, 1 = y, 2 = z
+  std::int32_t upper = 0;          ///< 1 for the wall at the upper end of its axis
+  std::int32_t stress_controlled = 0;  ///< 1 when servo-controlled to target_stress
+  std::int32_t padding = 0;
+  double position = 0.0;           ///< [m]
+  double velocity = 0.0;           ///< along +axis [m/s]
+  double normal_force = 0.0;       ///< compressive force of the bodies on the wall [N]
+  double target_stress = 0.0;      ///< [Pa]
+};
+
 /// Scalar history of one output step.
 struct MacroRecord {
   std::int64_t step = 0;

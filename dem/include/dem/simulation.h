@@ -37,7 +37,9 @@ struct SimulationOptions {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< [m/s^2]
   /// Cundall's local non-viscous damping coefficient alpha in [0, 1); 0 = off.
   double local_damping = 0.0;
-  /// Mass scaling factor (>= 1 slows the dynamics down and enlarges the stable step; reported).
+  /// Density scaling factor (>= 1): the dynamics use every mass and inertia times this factor,
+  /// which enlarges the stable step by its square root (reported; Particles keep true masses).
+  /// Gravity acts on the scaled mass too, so weights are scaled as well.
   double density_scaling = 1.0;
   /// A step whose largest overlap exceeds this fraction of the smaller radius is an error.
   double max_overlap_ratio = 0.25;
@@ -57,12 +59,32 @@ struct PhaseTimings {
   double total() const { return detection + forces + integration; }
 };
 
+/// Everything a run needs to continue bit for bit: bodies in their current memory order, walls,
+/// the contact list with its history and build reference, and the step counters.
+struct SimulationState {
+  Particles particles;
+  std::vector<Wall> walls;
+  ContactList contacts;
+  double time = 0.0;
+  std::int64_t step_count = 0;
+  bool rebuild_due = true;
+  double max_sphere_move = 0.0;
+  std::vector<double> wall_last_move;  ///< the servo's previous move of each wall [m]
+};
+
 class Simulation {
  public:
   /// Takes the bodies and walls and checks every parameter; throws std::invalid_argument naming
   /// the bad one, and refuses a time step above the stable limit of a single contact.
   Simulation(Particles particles, std::vector<Wall> walls, ContactParameters contact,
              SimulationOptions options);
+
+  /// Continues a run from a saved state (see `state()`); the options and contact law must be
+  /// those of the original run for the continuation to be identical.
+  Simulation(SimulationState state, ContactParameters contact, SimulationOptions options);
+
+  /// A copy of the full state, for checkpoints.
+  SimulationState state() const;
 
   void step();
   void run(std::int64_t num_steps);
@@ -90,6 +112,10 @@ class Simulation {
 
   /// True when the walls form a box (one lower and one upper wall on each axis).
   bool has_box() const { return box_walls_[0][0] >= 0; }
+  /// Index in walls() of the box wall on `axis` at its lower or upper end (needs has_box()).
+  int box_wall(int axis, bool upper) const { return box_walls_[axis][upper ? 1 : 0]; }
+  /// Mean compressive stress on the two box walls normal to `axis` [Pa].
+  double wall_stress(int axis) const;
   /// Box volume and the area of wall w's face, from the wall positions [m^3], [m^2].
   double box_volume() const;
   double wall_area(int w) const;
@@ -123,6 +149,7 @@ class Simulation {
   void move_walls();
   void schedule_rebuild_if_needed();
   void find_box_walls();
+  void initialise();  ///< validation, features, critical step, scratch arrays
 
   Particles particles_;
   std::vector<Wall> walls_;

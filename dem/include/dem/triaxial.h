@@ -1,0 +1,92 @@
+// Drained triaxial compression: lateral walls servo-held at sigma_3, platens (z walls) driven
+// together at a constant strain rate until the critical state or a maximum axial strain.
+// Strains are engineering strains from the wall positions, compression positive:
+// eps_a = (H0 - H) / H0, eps_x = (W0 - W) / W0, eps_v = (V0 - V) / V0.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dem/run_file.h"
+#include "dem/simulation.h"
+
+namespace dem {
+
+struct TriaxialOptions {
+  double confining_stress = 100e3;   ///< sigma_3 held on the lateral walls [Pa]
+  double strain_rate = 20.0;         ///< axial strain rate [1/s] (paper: 0.06 m/s on 3 mm)
+  double max_axial_strain = 0.45;    ///< stop here if no critical state was found
+  double output_strain_interval = 2e-3;    ///< a /series row every this much axial strain
+  double snapshot_strain_interval = 0.05;  ///< a snapshot every this much axial strain
+  double checkpoint_strain_interval = 0.02;  ///< a checkpoint every this much axial strain
+  /// Critical state: over the last `critical_window` of axial strain the stress ratio q/p varies
+  /// by less than `critical_eta_range` and the volumetric strain by less than
+  /// `critical_volume_range`, once the axial strain exceeds `critical_min_strain`.
+  double critical_window = 0.1;
+  double critical_eta_range = 0.05;
+  double critical_volume_range = 0.005;
+  double critical_min_strain = 0.2;
+
+  std::string validate() const;
+};
+
+enum class TriaxialStop { kCriticalState, kMaxStrain };
+
+struct TriaxialSummary {
+  TriaxialStop stop = TriaxialStop::kMaxStrain;
+  double axial_strain = 0.0;
+  double peak_eta = 0.0, peak_eta_strain = 0.0;
+  double critical_eta = 0.0;          ///< mean q/p over the final window
+  double initial_void_ratio = 0.0, final_void_ratio = 0.0;
+  double worst_lateral_error = 0.0;   ///< max |sigma_lateral - sigma_3| / sigma_3 over the run
+  double max_inertial_number = 0.0;
+  std::int64_t steps = 0;
+  double wall_seconds = 0.0;
+  std::string describe() const;
+};
+
+/// Progress of a running test, passed to the callback after each series row.
+struct TriaxialProgress {
+  double axial_strain = 0.0;
+  double target_strain = 0.0;
+  double steps_per_second = 0.0;
+  double seconds_left = 0.0;
+  double eta = 0.0;   ///< q/p
+};
+
+/// The names of the /series columns a triaxial run writes, in order.
+const std::vector<std::string>& triaxial_series_names();
+
+class TriaxialTest {
+ public:
+  /// `simulation` must hold a box of six walls around a prepared (compacted) specimen.
+  TriaxialTest(Simulation& simulation, const TriaxialOptions& options);
+
+  /// Runs to the end, writing series, snapshots and checkpoints to `file` (may be null).
+  /// If `file` holds a checkpoint the caller restored, pass `resumed` = true and the extras
+  /// read with it.
+  TriaxialSummary run(RunFile* file, const std::function<void(const TriaxialProgress&)>& progress,
+                      const CheckpointExtras* resumed = nullptr);
+
+  /// The current row of the series (for tests and the CLI).
+  std::vector<double> series_row() const;
+
+ private:
+  double axial_strain() const;
+  double void_ratio() const;
+  void drive_platens();
+  CheckpointExtras extras() const;
+
+  Simulation& sim_;
+  TriaxialOptions options_;
+  double height0_ = 0.0, width0_[2] = {0.0, 0.0}, volume0_ = 0.0, solid_volume_ = 0.0;
+  double mean_diameter_ = 0.0, mean_density_ = 0.0;
+  double next_output_ = 0.0, next_snapshot_ = 0.0, next_checkpoint_ = 0.0;
+  double worst_lateral_error_ = 0.0, peak_eta_ = 0.0, peak_eta_strain_ = 0.0;
+  double max_inertial_number_ = 0.0, initial_void_ratio_ = 0.0;
+  std::vector<double> history_strain_, history_eta_, history_volume_;
+};
+
+}  // namespace dem

@@ -1,0 +1,77 @@
+// Internal: a thin RAII layer over the HDF5 C API for the run file. Every failure becomes a
+// std::runtime_error naming the object; run_file.cc turns those into messages for the caller.
+#pragma once
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dem::h5 {
+
+/// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(hid_t id) : id_(id) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, -1)) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, -1);
+    }
+    return *this;
+  }
+  ~Handle() { reset(); }
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  void reset();
+
+ private:
+  hid_t id_ = -1;
+};
+
+/// Throws std::runtime_error(what) when id < 0; returns the id wrapped.
+Handle check(hid_t id, const std::string& what);
+void check_status(herr_t status, const std::string& what);
+
+/// Silences HDF5's own error printing (we report errors ourselves).
+void silence_errors();
+
+bool exists(hid_t location, const std::string& path);
+Handle open_group(hid_t location, const std::string& path);
+Handle create_group(hid_t location, const std::string& path);
+
+void write_attribute(hid_t object, const std::string& name, const std::string& value);
+void write_attribute(hid_t object, const std::string& name, double value);
+void write_attribute(hid_t object, const std::string& name, std::int64_t value);
+std::string read_string_attribute(hid_t object, const std::string& name);
+double read_double_attribute(hid_t object, const std::string& name);
+std::int64_t read_int_attribute(hid_t object, const std::string& name);
+
+/// A chunked, shuffled and deflated dataset of `rows` x `cols` elements of `type` (cols = 0: a
+/// 1-D dataset), written from `data` in row-major order.
+void write_dataset(hid_t location, const std::string& name, hid_t type, const void* data,
+                   std::size_t rows, std::size_t cols = 0);
+/// Reads a whole dataset of `type`; returns the number of rows and sets `cols` (0 for 1-D).
+template <typename T>
+std::vector<T> read_dataset(hid_t location, const std::string& name, hid_t type,
+                            std::size_t* cols = nullptr);
+
+/// An extendible 1-D dataset of doubles (unlimited length, chunked).
+void create_extendible(hid_t location, const std::string& name);
+void append(hid_t location, const std::string& name, double value);
+std::size_t length(hid_t location, const std::string& name);
+/// Shrinks an extendible dataset to `rows` (used when resuming from a checkpoint).
+void truncate(hid_t location, const std::string& name, std::size_t rows);
+
+/// HDF5 compound types laid out exactly like the record structs.
+Handle particle_record_type();
+Handle contact_record_type();
+Handle wall_record_type();
+
+}  // namespace dem::h5

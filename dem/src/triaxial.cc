@@ -1,0 +1,268 @@
+#include "dem/triaxial.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace dem {
+namespace {
+
+// The series of a triaxial run. Stresses compression positive [Pa], strains compression
+// positive [-], wall positions [m], energy [J].
+const std::vector<std::string> kSeriesNames = {
+    "step", "time", "axial_strain", "lateral_strain_x", "lateral_strain_y",
+    "volumetric_strain", "void_ratio",
+    "wall_stress_xx", "wall_stress_yy", "wall_stress_zz",
+    "sigma_1", "sigma_3", "p", "q", "eta",
+    "contact_stress_xx", "contact_stress_yy", "contact_stress_zz",
+    "contact_stress_yz", "contact_stress_xz", "contact_stress_xy",
+    "contact_p", "contact_q", "coordination_number", "inertial_number",
+    "unbalanced_force_ratio", "kinetic_energy", "lateral_stress_error",
+    "wall_x_lower", "wall_x_upper", "wall_y_lower", "wall_y_upper", "wall_z_lower", "wall_z_upper"};
+
+std::size_t column(const std::string& name) {
+  return static_cast<std::size_t>(
+      std::find(kSeriesNames.begin(), kSeriesNames.end(), name) - kSeriesNames.begin());
+}
+
+double range_of(const std::vector<double>& v, std::size_t from) {
+  const auto [lo, hi] = std::minmax_element(v.begin() + static_cast<std::ptrdiff_t>(from), v.end());
+  return *hi - *lo;
+}
+
+}  // namespace
+
+const std::vector<std::string>& triaxial_series_names() { return kSeriesNames; }
+
+std::string TriaxialOptions::validate() const {
+  std::ostringstream e;
+  if (!(confining_stress > 0.0)) e << "confining_stress must be positive [Pa]; ";
+  if (!(strain_rate > 0.0)) e << "strain_rate must be positive [1/s]; ";
+  if (!(max_axial_strain > 0.0 && max_axial_strain < 0.9))
+    e << "max_axial_strain must lie in (0, 0.9); ";
+  if (!(output_strain_interval > 0.0)) e << "output_strain_interval must be positive; ";
+  if (!(snapshot_strain_interval > 0.0)) e << "snapshot_strain_interval must be positive; ";
+  if (!(checkpoint_strain_interval > 0.0)) e << "checkpoint_strain_interval must be positive; ";
+  if (!(critical_window > 0.0)) e << "critical_window must be positive; ";
+  if (!(critical_eta_range > 0.0)) e << "critical_eta_range must be positive; ";
+  if (!(critical_volume_range > 0.0)) e << "critical_volume_range must be positive; ";
+  return e.str();
+}
+
+std::string TriaxialSummary::describe() const {
+  std::ostringstream s;
+  s << (stop == TriaxialStop::kCriticalState ? "critical state reached" : "maximum axial strain reached")
+    << " at axial strain " << axial_strain << "; peak q/p " << peak_eta << " at " << peak_eta_strain
+    << ", critical q/p " << critical_eta << "; void ratio " << initial_void_ratio << " -> "
+    << final_void_ratio << "; worst lateral stress error " << 100.0 * worst_lateral_error
+    << " %; max inertial number " << max_inertial_number << "; " << steps << " steps in "
+    << wall_seconds << " s";
+  return s.str();
+}
+
+TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& options)
+    : sim_(simulation), options_(options) {
+  const std::string error = options_.validate();
+  if (!error.empty()) throw std::invalid_argument("triaxial: " + error);
+  if (!sim_.has_box()) throw std::invalid_argument("triaxial: the specimen needs a box of six walls");
+  auto extent = [&](int axis) {
+    return sim_.walls()[sim_.box_wall(axis, true)].position -
+           sim_.walls()[sim_.box_wall(axis, false)].position;
+  };
+  height0_ = extent(2);
+  width0_[0] = extent(0);
+  width0_[1] = extent(1);
+  volume0_ = sim_.box_volume();
+  const Particles& p = sim_.particles();
+  double mass = 0.0, diameter = 0.0;
+  for (int b = 0; b < p.num_bodies(); ++b) {
+    solid_volume_ += p.volume[b];
+    mass += p.mass[b];
+    diameter += 2.0 * p.sphere_radius[p.first_sphere[b]];
+  }
+  mean_density_ = mass / solid_volume_;
+  mean_diameter_ = diameter / p.num_bodies();
+
+  for (int axis = 0; axis < 2; ++axis)
+    for (bool upper : {false, true}) {
+      Wall& w = sim_.walls()[sim_.box_wall(axis, upper)];
+      w.mode = WallMode::kStress;
+      w.target_stress = options_.confining_stress;
+    }
+  drive_platens();
+  initial_void_ratio_ = void_ratio();
+}
+
+void TriaxialTest::drive_platens() {
+  // The strain rate refers to the initial height: constant platen speed.
+  const double platen_speed = 0.5 * options_.strain_rate * height0_;
+  Wall& bottom = sim_.walls()[sim_.box_wall(2, false)];
+  Wall& top = sim_.walls()[sim_.box_wall(2, true)];
+  bottom.mode = top.mode = WallMode::kVelocity;
+  bottom.velocity = platen_speed;
+  top.velocity = -platen_speed;
+}
+
+double TriaxialTest::axial_strain() const {
+  const double h = sim_.walls()[sim_.box_wall(2, true)].position -
+                   sim_.walls()[sim_.box_wall(2, false)].position;
+  return (height0_ - h) / height0_;
+}
+
+double TriaxialTest::void_ratio() const { return sim_.box_volume() / solid_volume_ - 1.0; }
+
+std::vector<double> TriaxialTest::series_row() const {
+  const auto& walls = sim_.walls();
+  auto extent = [&](int axis) {
+    return walls[sim_.box_wall(axis, true)].position - walls[sim_.box_wall(axis, false)].position;
+  };
+  const double sxx = sim_.wall_stress(0), syy = sim_.wall_stress(1), szz = sim_.wall_stress(2);
+  const double s1 = szz, s3 = 0.5 * (sxx + syy);
+  const double p = (s1 + 2.0 * s3) / 3.0, q = s1 - s3;
+  double lateral_error = 0.0;
+  for (int axis = 0; axis < 2; ++axis)
+    for (bool upper : {false, true}) {
+      const int w = sim_.box_wall(axis, upper);
+      const double stress = sim_.wall_forces()[w] / sim_.wall_area(w);
+      lateral_error = std::max(lateral_error, std::abs(stress - options_.confining_stress) /
+                                                  options_.confining_stress);
+    }
+  const Eigen::Matrix3d c = sim_.contact_stress(false);
+  const double cp = c.trace() / 3.0, cq = c(2, 2) - 0.5 * (c(0, 0) + c(1, 1));
+  const MacroRecord m = sim_.macro_record();
+  const double inertial =
+      p > 0.0 ? options_.strain_rate * mean_diameter_ * std::sqrt(mean_density_ / p) : 0.0;
+  return {static_cast<double>(sim_.step_count()), sim_.time(), axial_strain(),
+          (width0_[0] - extent(0)) / width0_[0], (width0_[1] - extent(1)) / width0_[1],
+          (volume0_ - sim_.box_volume()) / volume0_, void_ratio(),
+          sxx, syy, szz, s1, s3, p, q, p > 0.0 ? q / p : 0.0,
+          c(0, 0), c(1, 1), c(2, 2), c(1, 2), c(0, 2), c(0, 1), cp, cq,
+          m.coordination_number, inertial, m.unbalanced_force_ratio, m.kinetic_energy,
+          lateral_error,
+          walls[sim_.box_wall(0, false)].position, walls[sim_.box_wall(0, true)].position,
+          walls[sim_.box_wall(1, false)].position, walls[sim_.box_wall(1, true)].position,
+          walls[sim_.box_wall(2, false)].position, walls[sim_.box_wall(2, true)].position};
+}
+
+CheckpointExtras TriaxialTest::extras() const {
+  return {{"height0", height0_}, {"width0_x", width0_[0]}, {"width0_y", width0_[1]},
+          {"volume0", volume0_}, {"next_output", next_output_},
+          {"next_snapshot", next_snapshot_}, {"next_checkpoint", next_checkpoint_},
+          {"worst_lateral_error", worst_lateral_error_}, {"peak_eta", peak_eta_},
+          {"peak_eta_strain", peak_eta_strain_}, {"max_inertial_number", max_inertial_number_},
+          {"initial_void_ratio", initial_void_ratio_}};
+}
+
+TriaxialSummary TriaxialTest::run(RunFile* file,
+                                  const std::function<void(const TriaxialProgress&)>& progress,
+                                  const CheckpointExtras* resumed) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::int64_t start_step = sim_.step_count();
+  if (resumed) {
+    const CheckpointExtras& x = *resumed;
+    height0_ = x.at("height0");
+    width0_[0] = x.at("width0_x");
+    width0_[1] = x.at("width0_y");
+    volume0_ = x.at("volume0");
+    next_output_ = x.at("next_output");
+    next_snapshot_ = x.at("next_snapshot");
+    next_checkpoint_ = x.at("next_checkpoint");
+    worst_lateral_error_ = x.at("worst_lateral_error");
+    peak_eta_ = x.at("peak_eta");
+    peak_eta_strain_ = x.at("peak_eta_strain");
+    max_inertial_number_ = x.at("max_inertial_number");
+    initial_void_ratio_ = x.at("initial_void_ratio");
+    drive_platens();
+    if (file) {
+      history_strain_ = file->series("axial_strain");
+      history_eta_ = file->series("eta");
+      history_volume_ = file->series("volumetric_strain");
+    }
+  }
+  // The first row needs the wall forces of a step taken with the platens moving.
+  if (!resumed) sim_.step();
+  const double platen_speed = 0.5 * options_.strain_rate * height0_;
+  const double strain_per_step = 2.0 * platen_speed * sim_.time_step() / height0_;
+  TriaxialSummary summary;
+  summary.stop = TriaxialStop::kMaxStrain;
+  for (;;) {
+    const double strain = axial_strain();
+    if (strain + 0.5 * strain_per_step < next_output_) {
+      const auto steps = static_cast<std::int64_t>(
+          std::ceil((next_output_ - strain) / strain_per_step - 1e-9));
+      sim_.run(std::max<std::int64_t>(1, steps));
+      continue;
+    }
+    // An output step.
+    next_output_ += options_.output_strain_interval;
+    const std::vector<double> row = series_row();
+    if (file) file->append_series(row);
+    const double eta = row[column("eta")], eps_v = row[column("volumetric_strain")];
+    worst_lateral_error_ = std::max(worst_lateral_error_, row[column("lateral_stress_error")]);
+    max_inertial_number_ = std::max(max_inertial_number_, row[column("inertial_number")]);
+    if (eta > peak_eta_) {
+      peak_eta_ = eta;
+      peak_eta_strain_ = strain;
+    }
+    history_strain_.push_back(strain);
+    history_eta_.push_back(eta);
+    history_volume_.push_back(eps_v);
+
+    // Critical state: q/p and volume stationary over the last window.
+    bool critical = false;
+    std::size_t window_start = history_strain_.size();
+    while (window_start > 0 && strain - history_strain_[window_start - 1] <= options_.critical_window)
+      --window_start;
+    const bool full_window = window_start > 0;
+    if (full_window && strain >= options_.critical_min_strain) {
+      critical = range_of(history_eta_, window_start) < options_.critical_eta_range &&
+                 range_of(history_volume_, window_start) < options_.critical_volume_range;
+    }
+    const bool done = critical || strain >= options_.max_axial_strain;
+
+    if (file && (strain >= next_snapshot_ || done)) {
+      file->write_snapshot(take_snapshot(sim_, strain));
+      while (next_snapshot_ <= strain) next_snapshot_ += options_.snapshot_strain_interval;
+    }
+    if (file && strain >= next_checkpoint_ && !done) {
+      while (next_checkpoint_ <= strain) next_checkpoint_ += options_.checkpoint_strain_interval;
+      file->write_checkpoint(sim_.state(), extras());
+    }
+    if (file) file->flush();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (progress) {
+      TriaxialProgress pr;
+      pr.axial_strain = strain;
+      pr.target_strain = options_.max_axial_strain;
+      pr.steps_per_second =
+          seconds > 0.0 ? static_cast<double>(sim_.step_count() - start_step) / seconds : 0.0;
+      pr.seconds_left = pr.steps_per_second > 0.0
+                            ? (options_.max_axial_strain - strain) / strain_per_step / pr.steps_per_second
+                            : 0.0;
+      pr.eta = eta;
+      progress(pr);
+    }
+    if (done) {
+      summary.stop = critical ? TriaxialStop::kCriticalState : TriaxialStop::kMaxStrain;
+      double sum = 0.0;
+      const std::size_t from = full_window ? window_start : 0;
+      for (std::size_t k = from; k < history_eta_.size(); ++k) sum += history_eta_[k];
+      summary.critical_eta = sum / static_cast<double>(history_eta_.size() - from);
+      summary.axial_strain = strain;
+      break;
+    }
+  }
+  summary.peak_eta = peak_eta_;
+  summary.peak_eta_strain = peak_eta_strain_;
+  summary.initial_void_ratio = initial_void_ratio_;
+  summary.final_void_ratio = void_ratio();
+  summary.worst_lateral_error = worst_lateral_error_;
+  summary.max_inertial_number = max_inertial_number_;
+  summary.steps = sim_.step_count() - start_step;
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace dem

@@ -1,0 +1,127 @@
+#include "dem/run_file.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "dem/triaxial.h"
+#include "specimen_fixture.h"
+
+namespace dem {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "/sffcal_" + std::to_string(getpid()) + "_" + name;
+}
+
+TEST(RunFile, RoundTripsSeriesSnapshotsAndMetadata) {
+  const Simulation sim = testing::compacted_specimen(60, 0.3, 5);
+  const std::string path = temp_path("roundtrip.h5");
+  const RunMetadata meta{"test", "[dem]\nbodies = 60\n", 5, "0.1.0"};
+  const Snapshot written = take_snapshot(sim, 0.125);
+  {
+    RunFile file = RunFile::create(path, meta, {"a", "b"});
+    file.append_series({1.0, 2.0});
+    file.append_series({3.0, 4.5});
+    file.write_snapshot(written);
+  }
+  const RunFile file = RunFile::open(path);
+  EXPECT_EQ(file.metadata().config_text, meta.config_text);
+  EXPECT_EQ(file.metadata().seed, 5u);
+  EXPECT_EQ(file.series("b"), (std::vector<double>{2.0, 4.5}));
+  ASSERT_EQ(file.num_snapshots(), 1);
+  const Snapshot read = file.read_snapshot(0);
+  EXPECT_EQ(read.step, written.step);
+  EXPECT_EQ(read.axial_strain, 0.125);
+  ASSERT_EQ(read.contacts.size(), written.contacts.size());
+  ASSERT_GT(read.contacts.size(), 60u);
+  for (std::size_t k = 0; k < read.contacts.size(); ++k) {
+    EXPECT_EQ(read.contacts[k].body_a, written.contacts[k].body_a);
+    EXPECT_EQ(read.contacts[k].normal, written.contacts[k].normal);
+    EXPECT_EQ(read.contacts[k].normal_force, written.contacts[k].normal_force);
+    EXPECT_EQ(read.contacts[k].tangential_force, written.contacts[k].tangential_force);
+    EXPECT_EQ(read.contacts[k].branch, written.contacts[k].branch);
+  }
+  ASSERT_EQ(read.particles.size(), 60u);
+  EXPECT_EQ(read.particles[7].orientation, written.particles[7].orientation);
+  EXPECT_EQ(read.spheres, written.spheres);
+  ASSERT_EQ(read.walls.size(), 6u);
+  EXPECT_EQ(read.walls[5].normal_force, written.walls[5].normal_force);
+  std::remove(path.c_str());
+}
+
+TEST(RunFile, ClearErrorsForMissingFilesAndSeries) {
+  try {
+    RunFile::open(temp_path("does_not_exist.h5"));
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("does_not_exist.h5"), std::string::npos) << e.what();
+  }
+  const std::string path = temp_path("series.h5");
+  RunFile file = RunFile::create(path, {}, {"a"});
+  try {
+    file.series("nope");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("nope"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(file.append_series({1.0, 2.0}), std::invalid_argument);
+  std::remove(path.c_str());
+}
+
+struct Killed : std::runtime_error {
+  Killed() : std::runtime_error("killed") {}
+};
+
+TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
+  const Simulation specimen = testing::compacted_specimen(80, 0.2, 9);
+  TriaxialOptions options;
+  options.strain_rate = 100.0;
+  options.max_axial_strain = 0.05;
+  options.output_strain_interval = 0.0025;
+  options.snapshot_strain_interval = 0.02;
+  options.checkpoint_strain_interval = 0.015;
+  const RunMetadata meta{"triaxial", "", 9, "test"};
+
+  const std::string whole_path = temp_path("whole.h5");
+  Simulation whole = testing::shearing_copy(specimen);
+  {
+    RunFile file = RunFile::create(whole_path, meta, triaxial_series_names());
+    TriaxialTest(whole, options).run(&file, nullptr);
+  }
+
+  const std::string killed_path = temp_path("killed.h5");
+  {
+    Simulation sim = testing::shearing_copy(specimen);
+    RunFile file = RunFile::create(killed_path, meta, triaxial_series_names());
+    EXPECT_THROW(TriaxialTest(sim, options).run(&file, [](const TriaxialProgress& p) {
+      if (p.axial_strain > 0.037) throw Killed();
+    }),
+                 Killed);
+  }
+  Simulation resumed_sim = [&] {
+    RunFile file = RunFile::open(killed_path, true);
+    CheckpointExtras extras;
+    SimulationState state = file.read_checkpoint(&extras);
+    Simulation sim(std::move(state), whole.contact_parameters(), whole.options());
+    TriaxialTest test(sim, options);
+    test.run(&file, nullptr, &extras);
+    return sim;
+  }();
+
+  const RunFile a = RunFile::open(whole_path), b = RunFile::open(killed_path);
+  for (const std::string& name : triaxial_series_names()) {
+    if (name == "time") continue;
+    EXPECT_EQ(a.series(name), b.series(name)) << name;
+  }
+  EXPECT_EQ(a.num_snapshots(), b.num_snapshots());
+  for (int k = 0; k < whole.particles().num_bodies(); ++k)
+    ASSERT_EQ(whole.particles().position[k], resumed_sim.particles().position[k]);
+  std::remove(whole_path.c_str());
+  std::remove(killed_path.c_str());
+}
+
+}  // namespace
+}  // namespace dem

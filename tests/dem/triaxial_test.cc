@@ -1,0 +1,77 @@
+#include "dem/triaxial.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "specimen_fixture.h"
+
+namespace dem {
+namespace {
+
+TriaxialOptions fast_options() {
+  TriaxialOptions options;
+  options.strain_rate = 100.0;  // inertial number ~1e-3 at this size: still quasi-static
+  options.max_axial_strain = 0.25;
+  options.output_strain_interval = 0.005;
+  options.critical_min_strain = 1.0;  // run to the maximum: the assertions need the whole curve
+  return options;
+}
+
+struct Curve {
+  std::vector<double> strain, eta, volumetric;
+  TriaxialSummary summary;
+};
+
+Curve shear(double compaction_friction) {
+  const Simulation specimen = testing::compacted_specimen(150, compaction_friction, 11);
+  Simulation sim = testing::shearing_copy(specimen);
+  TriaxialTest test(sim, fast_options());
+  Curve curve;
+  curve.summary = test.run(nullptr, [&](const TriaxialProgress&) {
+    const std::vector<double> row = test.series_row();
+    const auto& names = triaxial_series_names();
+    auto at = [&](const char* name) {
+      return row[std::find(names.begin(), names.end(), name) - names.begin()];
+    };
+    curve.strain.push_back(at("axial_strain"));
+    curve.eta.push_back(at("eta"));
+    curve.volumetric.push_back(at("volumetric_strain"));
+  });
+  return curve;
+}
+
+TEST(Triaxial, DenseDilatesWithAPeakLooseContracts) {
+  const Curve dense = shear(0.0);
+  const Curve loose = shear(0.5);
+  ASSERT_LT(dense.summary.initial_void_ratio, loose.summary.initial_void_ratio - 0.05);
+  // Dense: a peak well above the final (critical-like) stress ratio, then dilation.
+  EXPECT_GT(dense.summary.peak_eta, 1.15 * dense.summary.critical_eta) << dense.summary.describe();
+  EXPECT_LT(dense.volumetric.back(), -0.03);  // eps_v < 0: dilation
+  EXPECT_GT(dense.summary.final_void_ratio, dense.summary.initial_void_ratio);
+  // Loose: contracts, and peaks far lower than the dense specimen.
+  EXPECT_GT(*std::max_element(loose.volumetric.begin(), loose.volumetric.end()), 0.005);
+  EXPECT_LT(loose.summary.peak_eta, dense.summary.peak_eta - 0.2) << loose.summary.describe();
+  // Lateral stress held by the servo throughout, quasi-static loading.
+  EXPECT_LT(dense.summary.worst_lateral_error, 0.05);
+  EXPECT_LT(loose.summary.worst_lateral_error, 0.05);
+  EXPECT_LT(dense.summary.max_inertial_number, 2e-3);
+  // Both approach one critical stress ratio, whatever the initial density.
+  EXPECT_NEAR(dense.summary.critical_eta, loose.summary.critical_eta, 0.25);
+}
+
+TEST(Triaxial, RejectsBadOptions) {
+  Simulation sim = testing::shearing_copy(testing::compacted_specimen(40, 0.3, 2));
+  TriaxialOptions options;
+  options.strain_rate = -1.0;
+  try {
+    TriaxialTest test(sim, options);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("strain_rate"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace dem
