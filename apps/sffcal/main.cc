@@ -1,84 +1,58 @@
 // sffcal: the project's command-line front end. Each subcommand is one stage of the pipeline.
 #include <CLI/CLI.hpp>
-#include <omp.h>
 
-#include <chrono>
 #include <cstdio>
 #include <exception>
 
-#include "dem/compaction.h"
-#include "dem/packing.h"
-
-namespace {
-
-struct CompactArgs {
-  int bodies = 500;
-  bool spheres = false;
-  double friction = 0.3;
-  double pressure_kpa = 100.0;
-  std::uint64_t seed = 1;
-  int threads = 0;
-};
-
-int run_compact(const CompactArgs& args) {
-  if (args.threads > 0) omp_set_num_threads(args.threads);
-  dem::GrainSpec grains;
-  grains.centre_distance_ratio = args.spheres ? 0.0 : 0.5;
-  dem::Particles particles = dem::random_lattice_packing(args.bodies, grains, args.seed);
-  Eigen::Vector3d lo, hi;
-  dem::bounding_box(particles, lo, hi);
-  dem::ContactParameters law;
-  law.friction = args.friction;
-  dem::SimulationOptions options;
-  options.local_damping = 0.7;
-  options.servo.max_speed = 0.5;
-  dem::Simulation sim(std::move(particles), dem::box_walls(lo, hi), law, options);
-  std::printf("sffcal compact: %d %s, d in [%.3g, %.3g] mm, friction %.3g, p'0 %.4g kPa, seed %llu, "
-              "%d threads\n",
-              args.bodies, args.spheres ? "spheres" : "two-sphere clumps", grains.min_diameter * 1e3,
-              grains.max_diameter * 1e3, args.friction, args.pressure_kpa,
-              static_cast<unsigned long long>(args.seed), omp_get_max_threads());
-  std::printf("time step %.4g s (critical %.4g s)\n", sim.time_step(), sim.critical_time_step());
-  dem::CompactionOptions compaction;
-  compaction.target_stress = args.pressure_kpa * 1e3;
-  const auto start = std::chrono::steady_clock::now();
-  const dem::CompactionResult result = dem::compact_isotropically(sim, compaction);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const dem::MacroRecord m = sim.macro_record();
-  double solid = 0.0;
-  for (double v : sim.particles().volume) solid += v;
-  const Eigen::Matrix3d sigma = sim.contact_stress(true);
-  std::printf("%s\n", result.summary().c_str());
-  std::printf("void ratio           %.4f\n", sim.box_volume() / solid - 1.0);
-  std::printf("coordination number  %.3f\n", m.coordination_number);
-  std::printf("contact stress [kPa] xx %.2f  yy %.2f  zz %.2f (particle form, walls included)\n",
-              sigma(0, 0) / 1e3, sigma(1, 1) / 1e3, sigma(2, 2) / 1e3);
-  std::printf("wall stress [kPa]    x %.2f  y %.2f  z %.2f\n", m.wall_force[1] / sim.wall_area(1) / 1e3,
-              m.wall_force[3] / sim.wall_area(3) / 1e3, m.wall_force[5] / sim.wall_area(5) / 1e3);
-  std::printf("wall clock %.2f s, %.3g body-steps/s\n", seconds,
-              static_cast<double>(args.bodies) * static_cast<double>(result.steps) / seconds);
-  return result.converged ? 0 : 2;
-}
-
-}  // namespace
+#include "dem_commands.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"sffcal: from grain-scale DEM to a calibrated fabric-based soil model"};
+  CLI::App app{"sffcal " SFFCAL_VERSION
+               ": from grain-scale DEM to a calibrated fabric-based soil model"};
   app.require_subcommand(1);
-  CompactArgs compact;
-  CLI::App* cmd = app.add_subcommand("compact", "Prepare a specimen by isotropic compaction");
-  cmd->add_option("-n,--bodies", compact.bodies, "number of bodies")->check(CLI::Range(2, 10000000));
-  cmd->add_flag("--spheres", compact.spheres, "plain spheres instead of two-sphere clumps");
-  cmd->add_option("--friction", compact.friction, "inter-grain friction during compaction")
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--pressure", compact.pressure_kpa, "target isotropic stress p'0 [kPa]")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", compact.seed, "random seed");
-  cmd->add_option("--threads", compact.threads, "OpenMP threads (0: all)")->check(CLI::NonNegativeNumber);
+
+  std::string config_path, out_path, specimen_path, run_path;
+  CLI::App* config = app.add_subcommand("config", "Print (or write) the default configuration");
+  config->add_option("-o,--output", out_path, "file to write instead of printing");
+
+  CLI::App* prepare = app.add_subcommand("prepare", "Prepare a specimen (insertion, optional "
+                                                    "gravity deposition, isotropic compaction)");
+  prepare->add_option("-c,--config", config_path, "TOML configuration")->required()->check(CLI::ExistingFile);
+  prepare->add_option("-o,--output", out_path, "specimen file to write (HDF5)")->required();
+
+  CLI::App* triaxial = app.add_subcommand("triaxial", "Drained triaxial compression of a specimen");
+  triaxial->add_option("-c,--config", config_path, "TOML configuration")->check(CLI::ExistingFile);
+  triaxial->add_option("-s,--specimen", specimen_path, "specimen file from 'prepare'")->check(CLI::ExistingFile);
+  triaxial->add_option("-o,--output", out_path, "run file to write (HDF5)")->required();
+  bool resume = false;
+  triaxial->add_flag("--resume", resume, "continue the run file from its last checkpoint "
+                                         "(uses the config stored in it)");
+
+  CLI::App* dem = app.add_subcommand("dem", "Prepare a specimen and run the triaxial test");
+  dem->add_option("-c,--config", config_path, "TOML configuration")->required()->check(CLI::ExistingFile);
+  dem->add_option("-o,--output", out_path, "run file to write (HDF5); the specimen goes to "
+                                           "<output>.specimen.h5")->required();
+
+  CLI::App* vtk = app.add_subcommand("vtk", "Export the snapshots of a run file for ParaView");
+  vtk->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
+  vtk->add_option("-o,--output", out_path, "folder for the VTU/PVD files")->required();
+
+  CLI::App* info = app.add_subcommand("info", "Summarise a run or specimen file");
+  info->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
+
   CLI11_PARSE(app, argc, argv);
   try {
-    if (cmd->parsed()) return run_compact(compact);
+    if (config->parsed()) return sffcal::print_default_config(out_path);
+    if (prepare->parsed()) return sffcal::prepare_command(config_path, out_path);
+    if (triaxial->parsed()) {
+      if (resume) return sffcal::resume_command(out_path);
+      if (config_path.empty() || specimen_path.empty())
+        throw std::invalid_argument("triaxial needs --config and --specimen (or --resume)");
+      return sffcal::triaxial_command(config_path, specimen_path, out_path);
+    }
+    if (dem->parsed()) return sffcal::dem_command(config_path, out_path);
+    if (vtk->parsed()) return sffcal::vtk_command(run_path, out_path);
+    if (info->parsed()) return sffcal::info_command(run_path);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sffcal: error: %s\n", e.what());
     return 1;

@@ -1,5 +1,6 @@
 #include "dem/packing.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -7,7 +8,7 @@
 namespace dem {
 
 Particles random_lattice_packing(int num_bodies, const GrainSpec& grains, std::uint64_t seed,
-                                 double gap_ratio) {
+                                 double gap_ratio, double height_ratio) {
   if (num_bodies <= 0) throw std::invalid_argument("random_lattice_packing: num_bodies <= 0");
   if (!(grains.min_diameter > 0.0 && grains.max_diameter >= grains.min_diameter))
     throw std::invalid_argument("random_lattice_packing: need 0 < min_diameter <= max_diameter");
@@ -19,8 +20,11 @@ Particles random_lattice_packing(int num_bodies, const GrainSpec& grains, std::u
 
   const double longest = grains.max_diameter * (1.0 + grains.centre_distance_ratio);
   const double spacing = longest * (1.0 + gap_ratio);
-  const int per_side = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(num_bodies))));
-  const double half_extent = 0.5 * spacing * per_side;
+  if (!(height_ratio > 0.0)) throw std::invalid_argument("random_lattice_packing: height_ratio <= 0");
+  const int per_side = std::max(
+      1, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(num_bodies) / height_ratio))));
+  const int layers = (num_bodies + per_side * per_side - 1) / (per_side * per_side);
+  const double half_extent = 0.5 * spacing * per_side, half_height = 0.5 * spacing * layers;
 
   Particles particles;
   for (int n = 0; n < num_bodies; ++n) {
@@ -33,7 +37,7 @@ Particles random_lattice_packing(int num_bodies, const GrainSpec& grains, std::u
     const double length = d * (1.0 + grains.centre_distance_ratio);
     const double play = 0.5 * (spacing - length);  // room left in the site on each side
     Eigen::Vector3d centre(-half_extent + spacing * (ix + 0.5), -half_extent + spacing * (iy + 0.5),
-                           -half_extent + spacing * (iz + 0.5));
+                           -half_height + spacing * (iz + 0.5));
     for (int k = 0; k < 3; ++k) centre[k] += play * (2.0 * unit(rng) - 1.0);
     particles.add_body({0.5 * d, grains.centre_distance_ratio * d}, grains.density, centre, q);
   }

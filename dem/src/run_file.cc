@@ -139,6 +139,21 @@ RunMetadata RunFile::metadata() const {
   });
 }
 
+void RunFile::write_note(const std::string& key, const std::string& text) {
+  impl_->guard("write note " + key, [&] {
+    h5::write_attribute(impl_->id(), "note:" + key, text);
+    return 0;
+  });
+}
+
+std::string RunFile::read_note(const std::string& key) const {
+  return impl_->guard("read note " + key, [&] {
+    const std::string name = "note:" + key;
+    if (H5Aexists(impl_->id(), name.c_str()) <= 0) return std::string();
+    return h5::read_string_attribute(impl_->id(), name);
+  });
+}
+
 const std::vector<std::string>& RunFile::series_names() const { return impl_->series_names; }
 
 void RunFile::append_series(const std::vector<double>& row) {

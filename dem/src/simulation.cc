@@ -379,10 +379,12 @@ void Simulation::integrate() {
 #pragma omp parallel for schedule(static) reduction(max : max_move2) \
     if (nb >= options_.min_parallel_items)
   for (int b = 0; b < nb; ++b) {
+    // Local damping acts on the unbalanced force, weight included (Cundall): a body resting on
+    // its contacts has nothing to damp.
     Eigen::Vector3d f = P.force[b];
+    if constexpr (kGravity) f += (options_.density_scaling * P.mass[b]) * g;
     if constexpr (kDamping) f = locally_damped(f, P.velocity[b], alpha);
-    Eigen::Vector3d acceleration = (inv_scale / P.mass[b]) * f;
-    if constexpr (kGravity) acceleration += g;
+    const Eigen::Vector3d acceleration = (inv_scale / P.mass[b]) * f;
     P.velocity[b] += dt * acceleration;
     P.position[b] += dt * P.velocity[b];
     const int s0 = P.first_sphere[b];

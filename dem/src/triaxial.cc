@@ -55,7 +55,8 @@ std::string TriaxialSummary::describe() const {
   std::ostringstream s;
   s << (stop == TriaxialStop::kCriticalState ? "critical state reached" : "maximum axial strain reached")
     << " at axial strain " << axial_strain << "; peak q/p " << peak_eta << " at " << peak_eta_strain
-    << ", critical q/p " << critical_eta << "; void ratio " << initial_void_ratio << " -> "
+    << (stop == TriaxialStop::kCriticalState ? ", critical q/p " : ", final q/p (last window) ")
+    << critical_eta << "; void ratio " << initial_void_ratio << " -> "
     << final_void_ratio << "; worst lateral stress error " << 100.0 * worst_lateral_error
     << " %; max inertial number " << max_inertial_number << "; " << steps << " steps in "
     << wall_seconds << " s";
@@ -238,8 +239,10 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       pr.target_strain = options_.max_axial_strain;
       pr.steps_per_second =
           seconds > 0.0 ? static_cast<double>(sim_.step_count() - start_step) / seconds : 0.0;
-      pr.seconds_left = pr.steps_per_second > 0.0
-                            ? (options_.max_axial_strain - strain) / strain_per_step / pr.steps_per_second
+      const bool rate_known = sim_.step_count() - start_step >= 1000;
+      pr.seconds_left = rate_known && pr.steps_per_second > 0.0
+                            ? std::max(0.0, options_.max_axial_strain - strain) / strain_per_step /
+                                  pr.steps_per_second
                             : 0.0;
       pr.eta = eta;
       progress(pr);

@@ -21,10 +21,11 @@ struct GrainSpec {
 
 /// Random insertion without overlap: bodies at the sites of a cubic lattice whose spacing is the
 /// longest body (plus `gap_ratio` of it), each with a random diameter, a uniformly random
-/// orientation and a small random shift that keeps it inside its site. The lattice fills a cube
-/// centred on the origin. Same seed, same packing.
+/// orientation and a small random shift that keeps it inside its site. The lattice is centred on
+/// the origin, with `height_ratio` times as many sites along z as along x and y (1: a cube).
+/// Same seed, same packing.
 Particles random_lattice_packing(int num_bodies, const GrainSpec& grains, std::uint64_t seed,
-                                 double gap_ratio = 0.05);
+                                 double gap_ratio = 0.05, double height_ratio = 1.0);
 
 /// Smallest axis-aligned box holding every sphere, [lo, hi] per axis.
 void bounding_box(const Particles& particles, Eigen::Vector3d& lo, Eigen::Vector3d& hi);

@@ -69,6 +69,10 @@ class RunFile {
   const std::string& path() const;
   RunMetadata metadata() const;
 
+  /// A free-text root attribute (e.g. the preparation report); read_note returns "" if absent.
+  void write_note(const std::string& key, const std::string& text);
+  std::string read_note(const std::string& key) const;
+
   const std::vector<std::string>& series_names() const;
   /// Appends one row; `row` holds one value per series name, in that order.
   void append_series(const std::vector<double>& row);

@@ -32,7 +32,7 @@ struct Wall {
 /// force error over that stiffness times a gain, cap the speed, and blend with the last move.
 struct ServoParameters {
   double gain = 0.5;              ///< fraction of the stiffness-estimated correction per step
-  double max_speed = 0.1;         ///< cap on the wall speed [m/s]
+  double max_speed = 0.5;         ///< cap on the wall speed [m/s]
   double blend = 0.5;             ///< weight of this step's move against the previous one
 
   std::string validate() const;

@@ -1,0 +1,174 @@
+#include "dem_commands.h"
+
+#include <omp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "dem/run_config.h"
+#include "dem/run_file.h"
+#include "dem/specimen.h"
+#include "dem/triaxial.h"
+#include "dem/vtk_writer.h"
+#include "progress.h"
+
+namespace sffcal {
+namespace {
+
+dem::RunMetadata metadata(const char* kind, const dem::RunConfig& config) {
+  return {kind, config.text, config.seed, SFFCAL_VERSION};
+}
+
+void use_threads(const dem::RunConfig& config) {
+  if (config.threads > 0) omp_set_num_threads(config.threads);
+}
+
+std::string format_seconds(double s) {
+  char text[32];
+  if (s >= 3600) std::snprintf(text, sizeof(text), "%.1f h", s / 3600);
+  else if (s >= 60) std::snprintf(text, sizeof(text), "%.1f min", s / 60);
+  else std::snprintf(text, sizeof(text), "%.0f s", s);
+  return text;
+}
+
+dem::TriaxialSummary shear(dem::Simulation& sim, const dem::RunConfig& config, dem::RunFile& file,
+                           const dem::CheckpointExtras* resumed) {
+  dem::TriaxialTest test(sim, config.triaxial);
+  ProgressLine line;
+  const dem::TriaxialSummary summary = test.run(&file, [&](const dem::TriaxialProgress& p) {
+    char text[200];
+    std::snprintf(text, sizeof(text), "axial strain %.4f / %.3f  q/p %.3f  %.0f steps/s  %s left",
+                  p.axial_strain, p.target_strain, p.eta, p.steps_per_second,
+                  format_seconds(p.seconds_left).c_str());
+    line.update(p.axial_strain / p.target_strain, text);
+  }, resumed);
+  line.finish();
+  file.write_note("summary", summary.describe());
+  file.flush();
+  std::printf("%s\nrun file: %s\n", summary.describe().c_str(), file.path().c_str());
+  return summary;
+}
+
+// Prepares a specimen and saves it; returns the prepared simulation's state.
+void prepare_and_save(const dem::RunConfig& config, const std::string& out_path) {
+  use_threads(config);
+  std::printf("preparing %d %s (d in [%.3g, %.3g] mm), p'0 %.4g kPa, seed %llu, %d threads\n",
+              config.num_bodies, config.grains.centre_distance_ratio > 0 ? "two-sphere clumps" : "spheres",
+              config.grains.min_diameter * 1e3, config.grains.max_diameter * 1e3,
+              config.preparation.pressure / 1e3, static_cast<unsigned long long>(config.seed),
+              omp_get_max_threads());
+  dem::PreparationReport report;
+  const dem::Simulation sim = dem::prepare_specimen(config, &report, [](const std::string& msg) {
+    std::printf("  %s\n", msg.c_str());
+    std::fflush(stdout);
+  });
+  dem::RunFile file = dem::RunFile::create(out_path, metadata("specimen", config), {});
+  file.write_snapshot(dem::take_snapshot(sim, 0.0));
+  file.write_checkpoint(sim.state(), {{"pressure", config.preparation.pressure},
+                                      {"void_ratio", report.void_ratio},
+                                      {"compaction_friction", report.compaction_friction}});
+  file.write_note("preparation", report.describe());
+  std::printf("%s\nspecimen file: %s\n", report.describe().c_str(), out_path.c_str());
+}
+
+}  // namespace
+
+int print_default_config(const std::string& out_path) {
+  if (out_path.empty()) {
+    std::printf("%s", dem::default_run_config_text().c_str());
+    return 0;
+  }
+  std::ofstream out(out_path);
+  if (!out) throw std::runtime_error("cannot write " + out_path);
+  out << dem::default_run_config_text();
+  std::printf("wrote %s\n", out_path.c_str());
+  return 0;
+}
+
+int prepare_command(const std::string& config_path, const std::string& out_path) {
+  prepare_and_save(dem::load_run_config(config_path), out_path);
+  return 0;
+}
+
+int triaxial_command(const std::string& config_path, const std::string& specimen_path,
+                     const std::string& out_path) {
+  const dem::RunConfig config = dem::load_run_config(config_path);
+  use_threads(config);
+  dem::CheckpointExtras specimen_extras;
+  dem::SimulationState state = [&] {
+    dem::RunFile specimen = dem::RunFile::open(specimen_path);
+    return specimen.read_checkpoint(&specimen_extras);
+  }();
+  const double sigma3 = config.triaxial.confining_stress;
+  const double p0 = specimen_extras.count("pressure") ? specimen_extras.at("pressure") : sigma3;
+  if (std::abs(p0 - sigma3) > config.preparation.compaction.stress_tolerance * sigma3) {
+    // A specimen prepared at another pressure is first brought isotropically to sigma_3.
+    std::printf("re-consolidating the specimen from %.4g to %.4g kPa\n", p0 / 1e3, sigma3 / 1e3);
+    dem::SimulationOptions options = config.engine;
+    options.local_damping = config.preparation.local_damping;
+    options.servo.max_speed = config.preparation.servo_max_speed;
+    dem::Simulation sim(std::move(state), config.contact, options);
+    dem::CompactionOptions compaction = config.preparation.compaction;
+    compaction.target_stress = sigma3;
+    const dem::CompactionResult result = dem::compact_isotropically(sim, compaction);
+    if (!result.converged) throw std::runtime_error("re-consolidation: " + result.summary());
+    state = sim.state();
+  }
+  dem::Simulation sim(std::move(state), config.contact, config.engine);
+  std::printf("triaxial compression: sigma_3 %.4g kPa, strain rate %.3g /s, %d bodies, time step "
+              "%.3g s (critical %.3g s), %d threads\n",
+              sigma3 / 1e3, config.triaxial.strain_rate, sim.particles().num_bodies(),
+              sim.time_step(), sim.critical_time_step(), omp_get_max_threads());
+  dem::RunFile file = dem::RunFile::create(out_path, metadata("triaxial", config),
+                                           dem::triaxial_series_names());
+  file.write_note("specimen", specimen_path);
+  shear(sim, config, file, nullptr);
+  return 0;
+}
+
+int resume_command(const std::string& run_path) {
+  dem::RunFile file = dem::RunFile::open(run_path, true);
+  const dem::RunConfig config = dem::parse_run_config(file.metadata().config_text, run_path + " (stored config)");
+  use_threads(config);
+  if (!file.has_checkpoint()) throw std::runtime_error(run_path + " has no checkpoint to resume from");
+  dem::CheckpointExtras extras;
+  dem::SimulationState state = file.read_checkpoint(&extras);
+  dem::Simulation sim(std::move(state), config.contact, config.engine);
+  std::printf("resuming %s at step %lld\n", run_path.c_str(), static_cast<long long>(sim.step_count()));
+  shear(sim, config, file, &extras);
+  return 0;
+}
+
+int dem_command(const std::string& config_path, const std::string& out_path) {
+  const std::string specimen_path = out_path + ".specimen.h5";
+  prepare_and_save(dem::load_run_config(config_path), specimen_path);
+  return triaxial_command(config_path, specimen_path, out_path);
+}
+
+int vtk_command(const std::string& run_path, const std::string& folder) {
+  const dem::RunFile file = dem::RunFile::open(run_path);
+  const int n = dem::export_run_to_vtk(file, folder);
+  std::printf("wrote %d snapshots to %s (open spheres.pvd in ParaView; Glyph by 'radius')\n", n,
+              folder.c_str());
+  return 0;
+}
+
+int info_command(const std::string& run_path) {
+  const dem::RunFile file = dem::RunFile::open(run_path);
+  const dem::RunMetadata m = file.metadata();
+  std::printf("%s: %s run, program version %s, seed %llu\n", run_path.c_str(), m.kind.c_str(),
+              m.program_version.c_str(), static_cast<unsigned long long>(m.seed));
+  std::printf("series: %zu rows of %zu columns; snapshots: %d; checkpoint: %s\n",
+              file.series_length(), file.series_names().size(), file.num_snapshots(),
+              file.has_checkpoint() ? "yes" : "no");
+  for (const char* note : {"preparation", "specimen", "summary"}) {
+    const std::string text = file.read_note(note);
+    if (!text.empty()) std::printf("%s: %s\n", note, text.c_str());
+  }
+  return 0;
+}
+
+}  // namespace sffcal

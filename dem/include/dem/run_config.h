@@ -1,0 +1,54 @@
+// The configuration of a DEM run (specimen preparation and triaxial test), read from TOML.
+// Every key has a default that reproduces the paper's setting; unknown keys and out-of-range
+// values are errors naming the key. Units are SI except where a key's name says otherwise
+// (`loading_angle_deg`). docs/config.md lists every key.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "dem/compaction.h"
+#include "dem/contact_law.h"
+#include "dem/packing.h"
+#include "dem/simulation.h"
+#include "dem/triaxial.h"
+
+namespace dem {
+
+enum class PreparationMethod { kCompaction, kDeposition, kCsv };
+
+struct PreparationConfig {
+  PreparationMethod method = PreparationMethod::kCompaction;
+  double pressure = 100e3;               ///< p'0 of the isotropic compaction [Pa]
+  double compaction_friction = 0.1;      ///< friction while compacting: lower is denser
+  /// When > 0, the compaction friction is searched so that the void ratio at p'0 meets this.
+  double target_void_ratio = 0.0;
+  double void_ratio_tolerance = 0.01;
+  double loading_angle_deg = 0.0;        ///< bedding plane angle to the Y axis (deposition)
+  double deposition_gravity = 9810.0;    ///< [m/s^2]; 1000 g, see docs/dem.md
+  std::string csv_path;                  ///< packing to load (method = "csv")
+  double servo_max_speed = 0.5;          ///< [m/s]
+  double local_damping = 0.7;
+  CompactionOptions compaction;          ///< target_stress is taken from `pressure`
+};
+
+struct RunConfig {
+  std::uint64_t seed = 1;
+  int threads = 0;  ///< 0: all cores
+  int num_bodies = 1000;
+  GrainSpec grains;
+  ContactParameters contact;  ///< `friction` applies in shearing
+  SimulationOptions engine;   ///< local_damping applies in shearing
+  PreparationConfig preparation;
+  TriaxialOptions triaxial;
+  std::string text;           ///< the TOML text it was read from (stored in the run file)
+};
+
+/// Parses TOML text; throws std::invalid_argument naming the offending key.
+RunConfig parse_run_config(const std::string& toml_text, const std::string& source = "config");
+RunConfig load_run_config(const std::string& path);
+
+/// A fully commented TOML file with every key at its default.
+std::string default_run_config_text();
+
+}  // namespace dem

@@ -1,0 +1,51 @@
+// Specimen preparation: random insertion, optional gravity deposition at a loading angle,
+// isotropic compaction to p'0 with a friction that sets the density (searched for a target
+// void ratio if asked), or a packing loaded from CSV.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+
+#include "dem/run_config.h"
+#include "dem/simulation.h"
+
+namespace dem {
+
+struct PreparationReport {
+  std::string method;
+  double compaction_friction = 0.0;
+  int friction_trials = 0;            ///< compactions run by the void-ratio search
+  double void_ratio = 0.0;            ///< at p'0
+  double coordination_number = 0.0;
+  CompactionResult compaction;
+  std::int64_t deposition_steps = 0;
+  Eigen::Vector3d bedding_normal = Eigen::Vector3d::UnitZ();  ///< where the loading angle puts it
+  Eigen::Vector3d fabric_major = Eigen::Vector3d::Zero();     ///< contact-normal fabric
+  Eigen::Vector3d axis_minor = Eigen::Vector3d::Zero();       ///< particle-axis fabric
+  std::string describe() const;
+};
+
+/// Messages for a long preparation (one line per stage or trial).
+using ProgressLog = std::function<void(const std::string&)>;
+
+/// Prepares the specimen the config describes; the returned simulation holds it at p'0 with the
+/// preparation's friction and damping, its six walls servo-controlled.
+Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
+                            const ProgressLog& log = nullptr);
+
+/// Unit normal of the bedding plane for a loading angle: the plane contains X and makes
+/// `alpha` with the Y axis, so the normal is (0, -sin alpha, cos alpha) (Z for alpha = 0).
+Eigen::Vector3d bedding_normal(double loading_angle_deg);
+
+/// Fabric tensor (1/N) sum n n of the body-body contact normals.
+Eigen::Matrix3d contact_normal_fabric(const Simulation& simulation);
+/// (1/N) sum e e of the clump axes.
+Eigen::Matrix3d particle_axis_fabric(const Particles& particles);
+
+/// Reads a packing from CSV (format in docs/config.md): bodies and the box [lo, hi].
+/// Throws std::invalid_argument naming the line at fault.
+Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
+                           Eigen::Vector3d* hi);
+
+}  // namespace dem

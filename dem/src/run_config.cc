@@ -1,0 +1,257 @@
+#include "dem/run_config.h"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace dem {
+namespace {
+
+// Default configuration, with every key documented. parse_run_config(this) == RunConfig{}
+// (checked in a test), so the text and the struct defaults cannot drift apart.
+constexpr const char* kDefaultText = R"(# sffcal DEM configuration. SI units (m, kg, s, Pa) unless a key says otherwise.
+seed = 1          # random seed of the packing (reported in the run file)
+threads = 0       # OpenMP threads, 0 = all cores
+bodies = 1000     # number of grains
+
+[grains]
+min_diameter = 3.0e-5          # sphere diameter range [m] (paper: 0.03-0.07 mm)
+max_diameter = 7.0e-5
+centre_distance_ratio = 0.5    # clump sphere spacing / diameter (0.5: length 1.5 d; 0: spheres)
+density = 2650.0               # [kg/m^3]
+
+[contact]
+youngs_modulus = 1.5e8         # E [Pa]; K = 2 E1 E2 r1 r2 / (E1 r1 + E2 r2)
+stiffness_ratio = 0.5          # k_t / k_n
+friction = 0.5773502691896257  # tan 30 deg, during shearing
+wall_friction = 0.0            # frictionless walls
+normal_damping_ratio = 0.0     # contact dashpot, fraction of critical
+
+[engine]
+time_step = 0.0                # [s]; 0 = time_step_safety x critical step
+time_step_safety = 0.2
+skin_ratio = 0.2               # Verlet skin / largest diameter
+sort_every_builds = 10         # spatial re-sort of the bodies every N list builds
+local_damping = 0.0            # Cundall damping during shearing
+density_scaling = 1.0          # mass scaling (>= 1), reported
+max_overlap_ratio = 0.25       # overlap / radius that stops a run as unstable
+servo_gain = 0.5               # wall servo: fraction of the stiffness-estimated correction
+servo_blend = 0.5              # wall servo: weight of this step's move against the last
+
+[preparation]
+method = "compaction"          # "compaction", "deposition" (gravity at loading_angle_deg), "csv"
+pressure = 1.0e5               # isotropic p'0 [Pa]
+compaction_friction = 0.1      # friction while compacting: lower gives a denser specimen
+target_void_ratio = 0.0        # > 0: search the compaction friction for this void ratio
+void_ratio_tolerance = 0.01
+loading_angle_deg = 0.0        # deposition: bedding plane contains X, at this angle to Y [deg]
+deposition_gravity = 9810.0    # deposition gravity [m/s^2] (1000 g; see docs/dem.md)
+csv = ""                       # packing file for method = "csv" (see docs/config.md)
+servo_max_speed = 0.5          # cap on the wall speed while compacting [m/s]
+local_damping = 0.7            # Cundall damping while preparing
+stress_tolerance = 0.01        # accepted |sigma_wall - p'0| / p'0
+max_unbalanced_force = 1.0e-3  # accepted unbalanced-force ratio
+max_steps = 2000000            # give up (error) after this many compaction steps
+
+[triaxial]
+confining_stress = 0.0         # sigma_3 [Pa]; 0 = the preparation pressure
+strain_rate = 20.0             # axial strain rate [1/s] (paper: 0.06 m/s on a 3 mm cube)
+servo_max_speed = 0.5          # cap on the lateral wall speed [m/s]
+max_axial_strain = 0.45
+output_strain_interval = 0.002 # a series row every this much axial strain
+snapshot_strain_interval = 0.05
+checkpoint_strain_interval = 0.02
+critical_window = 0.1          # critical state: over this axial strain window ...
+critical_eta_range = 0.05      # ... q/p varies less than this
+critical_volume_range = 0.005  # ... and the volumetric strain less than this
+critical_min_strain = 0.2      # not before this axial strain
+)";
+
+using Setter = std::function<void(const toml::node&, const std::string& key)>;
+
+double number(const toml::node& node, const std::string& key) {
+  if (auto v = node.value<double>()) return *v;
+  throw std::invalid_argument(key + " must be a number");
+}
+
+Setter real(double& target) {
+  return [&target](const toml::node& n, const std::string& key) {
+    const double v = number(n, key);
+    if (!std::isfinite(v)) throw std::invalid_argument(key + " must be finite");
+    target = v;
+  };
+}
+
+template <typename Int>
+Setter integer(Int& target, long long min_value) {
+  return [&target, min_value](const toml::node& n, const std::string& key) {
+    const auto v = n.value<long long>();
+    if (!v || !n.is_integer()) throw std::invalid_argument(key + " must be an integer");
+    if (*v < min_value)
+      throw std::invalid_argument(key + " must be >= " + std::to_string(min_value) + " (got " +
+                                  std::to_string(*v) + ")");
+    target = static_cast<Int>(*v);
+  };
+}
+
+Setter text(std::string& target) {
+  return [&target](const toml::node& n, const std::string& key) {
+    if (!n.is_string()) throw std::invalid_argument(key + " must be a string");
+    target = *n.value<std::string>();
+  };
+}
+
+void check(bool ok, const std::string& message) {
+  if (!ok) throw std::invalid_argument(message);
+}
+
+}  // namespace
+
+RunConfig parse_run_config(const std::string& toml_text, const std::string& source) {
+  toml::table table;
+  try {
+    table = toml::parse(toml_text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << source << ": TOML syntax error at line " << e.source().begin.line << ", column "
+        << e.source().begin.column << ": " << e.description();
+    throw std::invalid_argument(msg.str());
+  }
+  RunConfig c;
+  c.text = toml_text;
+  std::string method = "compaction";
+  double servo_prep = c.preparation.servo_max_speed;
+  double servo_shear = 0.5;
+  const std::map<std::string, Setter> setters = {
+      {"seed", integer(c.seed, 0)},
+      {"threads", integer(c.threads, 0)},
+      {"bodies", integer(c.num_bodies, 2)},
+      {"grains.min_diameter", real(c.grains.min_diameter)},
+      {"grains.max_diameter", real(c.grains.max_diameter)},
+      {"grains.centre_distance_ratio", real(c.grains.centre_distance_ratio)},
+      {"grains.density", real(c.grains.density)},
+      {"contact.youngs_modulus", real(c.contact.youngs_modulus)},
+      {"contact.stiffness_ratio", real(c.contact.stiffness_ratio)},
+      {"contact.friction", real(c.contact.friction)},
+      {"contact.wall_friction", real(c.contact.wall_friction)},
+      {"contact.normal_damping_ratio", real(c.contact.normal_damping_ratio)},
+      {"engine.time_step", real(c.engine.time_step)},
+      {"engine.time_step_safety", real(c.engine.time_step_safety)},
+      {"engine.skin_ratio", real(c.engine.skin_ratio)},
+      {"engine.sort_every_builds", integer(c.engine.sort_every_builds, 0)},
+      {"engine.local_damping", real(c.engine.local_damping)},
+      {"engine.density_scaling", real(c.engine.density_scaling)},
+      {"engine.max_overlap_ratio", real(c.engine.max_overlap_ratio)},
+      {"engine.servo_gain", real(c.engine.servo.gain)},
+      {"engine.servo_blend", real(c.engine.servo.blend)},
+      {"preparation.method", text(method)},
+      {"preparation.pressure", real(c.preparation.pressure)},
+      {"preparation.compaction_friction", real(c.preparation.compaction_friction)},
+      {"preparation.target_void_ratio", real(c.preparation.target_void_ratio)},
+      {"preparation.void_ratio_tolerance", real(c.preparation.void_ratio_tolerance)},
+      {"preparation.loading_angle_deg", real(c.preparation.loading_angle_deg)},
+      {"preparation.deposition_gravity", real(c.preparation.deposition_gravity)},
+      {"preparation.csv", text(c.preparation.csv_path)},
+      {"preparation.servo_max_speed", real(servo_prep)},
+      {"preparation.local_damping", real(c.preparation.local_damping)},
+      {"preparation.stress_tolerance", real(c.preparation.compaction.stress_tolerance)},
+      {"preparation.max_unbalanced_force", real(c.preparation.compaction.max_unbalanced_force)},
+      {"preparation.max_steps", integer(c.preparation.compaction.max_steps, 1)},
+      {"triaxial.confining_stress", real(c.triaxial.confining_stress)},
+      {"triaxial.strain_rate", real(c.triaxial.strain_rate)},
+      {"triaxial.servo_max_speed", real(servo_shear)},
+      {"triaxial.max_axial_strain", real(c.triaxial.max_axial_strain)},
+      {"triaxial.output_strain_interval", real(c.triaxial.output_strain_interval)},
+      {"triaxial.snapshot_strain_interval", real(c.triaxial.snapshot_strain_interval)},
+      {"triaxial.checkpoint_strain_interval", real(c.triaxial.checkpoint_strain_interval)},
+      {"triaxial.critical_window", real(c.triaxial.critical_window)},
+      {"triaxial.critical_eta_range", real(c.triaxial.critical_eta_range)},
+      {"triaxial.critical_volume_range", real(c.triaxial.critical_volume_range)},
+      {"triaxial.critical_min_strain", real(c.triaxial.critical_min_strain)},
+  };
+  const std::string where = source + ": ";
+  c.triaxial.confining_stress = 0.0;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    if (const toml::table* section = node.as_table()) {
+      for (const auto& [sub, value] : *section) {
+        const std::string full = name + "." + std::string(sub.str());
+        const auto it = setters.find(full);
+        if (it == setters.end()) throw std::invalid_argument(where + "unknown key '" + full + "'");
+        try {
+          it->second(value, full);
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(where + e.what());
+        }
+      }
+      continue;
+    }
+    const auto it = setters.find(name);
+    if (it == setters.end()) throw std::invalid_argument(where + "unknown key '" + name + "'");
+    try {
+      it->second(node, name);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(where + e.what());
+    }
+  }
+
+  if (method == "compaction") c.preparation.method = PreparationMethod::kCompaction;
+  else if (method == "deposition") c.preparation.method = PreparationMethod::kDeposition;
+  else if (method == "csv") c.preparation.method = PreparationMethod::kCsv;
+  else
+    throw std::invalid_argument(where + "preparation.method must be \"compaction\", \"deposition\" or "
+                                "\"csv\" (got \"" + method + "\")");
+  c.preparation.servo_max_speed = servo_prep;
+  c.engine.servo.max_speed = servo_shear;
+  c.preparation.compaction.target_stress = c.preparation.pressure;
+  if (c.triaxial.confining_stress == 0.0) c.triaxial.confining_stress = c.preparation.pressure;
+
+  // Range checks, each naming its key.
+  const GrainSpec& g = c.grains;
+  check(g.min_diameter > 0.0, where + "grains.min_diameter must be positive [m]");
+  check(g.max_diameter >= g.min_diameter, where + "grains.max_diameter must be >= grains.min_diameter");
+  check(g.centre_distance_ratio >= 0.0 && g.centre_distance_ratio < 1.0,
+        where + "grains.centre_distance_ratio must lie in [0, 1)");
+  check(g.density > 0.0, where + "grains.density must be positive [kg/m^3]");
+  const std::string contact_error = c.contact.validate();
+  check(contact_error.empty(), where + "contact: " + contact_error);
+  const std::string engine_error = c.engine.validate();
+  check(engine_error.empty(), where + "engine: " + engine_error);
+  const PreparationConfig& p = c.preparation;
+  check(p.pressure > 0.0, where + "preparation.pressure must be positive [Pa]");
+  check(p.compaction_friction >= 0.0 && p.compaction_friction <= 10.0,
+        where + "preparation.compaction_friction must lie in [0, 10]");
+  check(p.target_void_ratio >= 0.0, where + "preparation.target_void_ratio must be >= 0");
+  check(p.void_ratio_tolerance > 0.0, where + "preparation.void_ratio_tolerance must be positive");
+  check(std::abs(p.loading_angle_deg) <= 90.0,
+        where + "preparation.loading_angle_deg must lie in [-90, 90]");
+  check(p.deposition_gravity > 0.0, where + "preparation.deposition_gravity must be positive");
+  check(p.method != PreparationMethod::kCsv || !p.csv_path.empty(),
+        where + "preparation.csv must name a file when preparation.method = \"csv\"");
+  check(p.servo_max_speed > 0.0, where + "preparation.servo_max_speed must be positive [m/s]");
+  check(p.local_damping >= 0.0 && p.local_damping < 1.0,
+        where + "preparation.local_damping must lie in [0, 1)");
+  check(p.compaction.stress_tolerance > 0.0, where + "preparation.stress_tolerance must be positive");
+  check(p.compaction.max_unbalanced_force > 0.0,
+        where + "preparation.max_unbalanced_force must be positive");
+  const std::string triaxial_error = c.triaxial.validate();
+  check(triaxial_error.empty(), where + "triaxial: " + triaxial_error);
+  return c;
+}
+
+RunConfig load_run_config(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("cannot read the config file " + path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_run_config(buffer.str(), path);
+}
+
+std::string default_run_config_text() { return kDefaultText; }
+
+}  // namespace dem

@@ -1,0 +1,318 @@
+#include "dem/specimen.h"
+
+#include <omp.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "dem/packing.h"
+#include "dem/rigid_body.h"
+
+namespace dem {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double void_ratio(const Simulation& sim) {
+  double solid = 0.0;
+  for (double v : sim.particles().volume) solid += v;
+  return sim.box_volume() / solid - 1.0;
+}
+
+Eigen::Vector3d major_direction(const Eigen::Matrix3d& tensor, bool largest) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(tensor);  // ascending eigenvalues
+  Eigen::Vector3d v = solver.eigenvectors().col(largest ? 2 : 0);
+  const int k = v.cwiseAbs().maxCoeff() == std::abs(v.z()) ? 2 : (v.cwiseAbs().maxCoeff() == std::abs(v.y()) ? 1 : 0);
+  return v[k] < 0.0 ? (-v).eval() : v;  // a sign convention: the largest component positive
+}
+
+// A loose lattice settles to about a fifth of its height; with rounding of the lattice, a column
+// of this aspect ratio settles into a deposit somewhat taller than wide (measured).
+constexpr double kDepositionColumnRatio = 9.0;
+
+// Lets bodies fall under gravity between fixed walls until they rest.
+std::int64_t deposit(Simulation& sim, const PreparationConfig& prep, const ProgressLog& log) {
+  const std::int64_t start = sim.step_count();
+  int quiet = 0;
+  while (sim.step_count() - start < prep.compaction.max_steps) {
+    sim.run(2000);
+    const double ratio = sim.unbalanced_force_ratio();
+    quiet = (sim.num_touching_pairs() > 0 && ratio < 1e-3) ? quiet + 1 : 0;
+    if (quiet >= 3) return sim.step_count() - start;
+  }
+  if (log) log("deposition: bodies still moving after preparation.max_steps; compacting anyway");
+  return sim.step_count() - start;
+}
+
+// Tilts a deposit by `alpha` about X (its bedding normal Z goes to (0, -sin a, cos a)) and keeps
+// the bodies inside the largest axis-aligned box that fits in the tilted deposit.
+Particles tilt_and_trim(const Particles& deposit, const Eigen::Vector3d& lo,
+                        const Eigen::Vector3d& hi, double alpha, Eigen::Vector3d* box_lo,
+                        Eigen::Vector3d* box_hi) {
+  Eigen::Vector3d d_lo, d_hi;  // the deposit's extent (its free surface bounds it from above)
+  bounding_box(deposit, d_lo, d_hi);
+  d_lo = d_lo.cwiseMax(lo);
+  d_hi = d_hi.cwiseMin(hi);
+  const Eigen::Vector3d centre = 0.5 * (d_lo + d_hi), half = 0.5 * (d_hi - d_lo);
+  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitX()));
+  // A square of half-side s, axis-aligned after the tilt, fits in the deposit's y-z rectangle
+  // when s (|cos a| + |sin a|) <= both half-widths.
+  const double s = std::min(half.y(), half.z()) / (std::abs(std::cos(alpha)) + std::abs(std::sin(alpha)));
+  *box_lo = Eigen::Vector3d(-half.x(), -s, -s);
+  *box_hi = Eigen::Vector3d(half.x(), s, s);
+  Particles kept;
+  for (int b = 0; b < deposit.num_bodies(); ++b) {
+    const Eigen::Vector3d x = tilt * (deposit.position[b] - centre);
+    const Eigen::Quaterniond q = tilt * deposit.orientation[b];
+    const int s0 = deposit.first_sphere[b];
+    const double r = deposit.sphere_radius[s0];
+    bool inside = true;
+    for (int k = s0; k < s0 + deposit.num_body_spheres[b]; ++k) {
+      const Eigen::Vector3d xs = tilt * (deposit.sphere_position[k] - centre);
+      inside = inside && (xs.array() - r >= box_lo->array()).all() &&
+               (xs.array() + r <= box_hi->array()).all();
+    }
+    if (!inside) continue;
+    const double centre_distance = 2.0 * std::abs(deposit.sphere_offset[s0]);
+    const double density = deposit.mass[b] / deposit.volume[b];
+    kept.add_body({r, centre_distance}, density, x, q);
+  }
+  return kept;
+}
+
+}  // namespace
+
+std::string PreparationReport::describe() const {
+  std::ostringstream s;
+  s << method << ": compaction friction " << compaction_friction;
+  if (friction_trials > 0) s << " (found in " << friction_trials << " trials)";
+  s << ", void ratio " << void_ratio << ", coordination number " << coordination_number << "; "
+    << compaction.summary();
+  if (deposition_steps > 0) {
+    s << "; deposited in " << deposition_steps << " steps, bedding normal (" << bedding_normal.transpose()
+      << "), contact-fabric major direction (" << fabric_major.transpose()
+      << "), particle-axis minor direction (" << axis_minor.transpose() << ")";
+  }
+  return s.str();
+}
+
+Eigen::Vector3d bedding_normal(double loading_angle_deg) {
+  const double a = loading_angle_deg * kPi / 180.0;
+  return {0.0, -std::sin(a), std::cos(a)};
+}
+
+Eigen::Matrix3d contact_normal_fabric(const Simulation& sim) {
+  Eigen::Matrix3d phi = Eigen::Matrix3d::Zero();
+  int n = 0;
+  for (const ContactRecord& c : sim.contact_records(false)) {
+    const Eigen::Vector3d normal(c.normal[0], c.normal[1], c.normal[2]);
+    phi += normal * normal.transpose();
+    ++n;
+  }
+  return n > 0 ? (phi / n).eval() : phi;
+}
+
+Eigen::Matrix3d particle_axis_fabric(const Particles& particles) {
+  Eigen::Matrix3d phi = Eigen::Matrix3d::Zero();
+  for (const auto& q : particles.orientation) {
+    const Eigen::Vector3d e = body_axis(q);
+    phi += e * e.transpose();
+  }
+  return phi / particles.num_bodies();
+}
+
+Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
+                           Eigen::Vector3d* hi) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("cannot read the packing file " + path);
+  Particles particles;
+  bool have_box = false, have_header = false;
+  std::string line;
+  int line_number = 0;
+  auto fail = [&](const std::string& what) {
+    throw std::invalid_argument(path + ":" + std::to_string(line_number) + ": " + what);
+  };
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (line[0] == '#') {
+      const std::size_t at = line.find("box:");
+      if (at != std::string::npos) {
+        std::istringstream box(line.substr(at + 4));
+        double v[6];
+        for (double& x : v)
+          if (!(box >> x)) fail("the box line needs six numbers: xlo ylo zlo xhi yhi zhi [m]");
+        *lo = {v[0], v[1], v[2]};
+        *hi = {v[3], v[4], v[5]};
+        if (!((*hi - *lo).minCoeff() > 0.0)) fail("the box must have hi > lo on every axis");
+        have_box = true;
+      }
+      continue;
+    }
+    if (!have_header) {
+      if (line.rfind("x,y,z,axis_x,axis_y,axis_z,diameter", 0) != 0)
+        fail("expected the header x,y,z,axis_x,axis_y,axis_z,diameter[,vx,vy,vz]");
+      have_header = true;
+      continue;
+    }
+    std::vector<double> v;
+    std::stringstream row(line);
+    std::string cell;
+    while (std::getline(row, cell, ',')) {
+      try {
+        std::size_t used = 0;
+        v.push_back(std::stod(cell, &used));
+      } catch (const std::exception&) {
+        fail("'" + cell + "' is not a number");
+      }
+    }
+    if (v.size() != 7 && v.size() != 10) fail("a row needs 7 or 10 values, found " + std::to_string(v.size()));
+    const Eigen::Vector3d centre(v[0], v[1], v[2]), axis(v[3], v[4], v[5]);
+    if (!(v[6] > 0.0)) fail("the diameter must be positive [m]");
+    if (!(std::abs(axis.norm() - 1.0) < 1e-3)) fail("the axis must be a unit vector");
+    const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), axis);
+    const int b = particles.add_body({0.5 * v[6], grains.centre_distance_ratio * v[6]},
+                                     grains.density, centre, q);
+    if (v.size() == 10) particles.velocity[b] = {v[7], v[8], v[9]};
+  }
+  if (!have_box) throw std::invalid_argument(path + ": no '# box: xlo ylo zlo xhi yhi zhi' line");
+  if (particles.num_bodies() == 0) throw std::invalid_argument(path + ": no bodies");
+  for (int s = 0; s < particles.num_spheres(); ++s) {
+    const Eigen::Vector3d& x = particles.sphere_position[s];
+    const double r = particles.sphere_radius[s];
+    if ((x.array() - r < lo->array()).any() || (x.array() + r > hi->array()).any())
+      throw std::invalid_argument(path + ": body " + std::to_string(particles.sphere_body[s]) +
+                                  " sticks out of the box");
+  }
+  return particles;
+}
+
+Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
+                            const ProgressLog& log) {
+  if (config.threads > 0) omp_set_num_threads(config.threads);
+  const PreparationConfig& prep = config.preparation;
+  PreparationReport local;
+  PreparationReport& r = report ? *report : local;
+
+  Eigen::Vector3d lo, hi;
+  Particles loose;
+  SimulationOptions options = config.engine;
+  options.local_damping = prep.local_damping;
+  options.servo.max_speed = prep.servo_max_speed;
+  ContactParameters law = config.contact;
+  law.friction = prep.compaction_friction;
+
+  if (prep.method == PreparationMethod::kCsv) {
+    loose = load_csv_packing(prep.csv_path, config.grains, &lo, &hi);
+    r.method = "csv packing " + prep.csv_path;
+  } else if (prep.method == PreparationMethod::kCompaction) {
+    loose = random_lattice_packing(config.num_bodies, config.grains, config.seed);
+    bounding_box(loose, lo, hi);
+    r.method = "compaction";
+  } else {
+    // Deposition: settle a column under gravity along -Z, tilt the deposit so that its bedding
+    // normal lies at the loading angle, and trim it to a box. Tilting loses the corners, so the
+    // column holds (|cos a| + |sin a|)^2 times the bodies wanted (plus 20 % for the surface).
+    const double alpha = prep.loading_angle_deg * kPi / 180.0;
+    const double overfill = std::pow(std::abs(std::cos(alpha)) + std::abs(std::sin(alpha)), 2) * 1.2;
+    const int column_bodies = static_cast<int>(std::ceil(overfill * config.num_bodies));
+    Particles column = random_lattice_packing(column_bodies, config.grains, config.seed, 0.05,
+                                              kDepositionColumnRatio);
+    bounding_box(column, lo, hi);
+    SimulationOptions deposition = options;
+    deposition.gravity = {0.0, 0.0, -prep.deposition_gravity};
+    Simulation sim(std::move(column), box_walls(lo, hi), law, deposition);
+    if (log) log("depositing " + std::to_string(column_bodies) + " bodies under " +
+                 std::to_string(prep.deposition_gravity) + " m/s^2");
+    r.deposition_steps = deposit(sim, prep, log);
+    loose = tilt_and_trim(sim.particles(), lo, hi, alpha, &lo, &hi);
+    r.bedding_normal = bedding_normal(prep.loading_angle_deg);
+    r.method = "deposition at " + std::to_string(prep.loading_angle_deg) + " deg, " +
+               std::to_string(loose.num_bodies()) + " bodies kept, + compaction";
+    if (loose.num_bodies() < 2) throw std::runtime_error("deposition: too few bodies left after trimming");
+  }
+
+  // The state compaction starts from, at rest.
+  const SimulationState start = Simulation(std::move(loose), box_walls(lo, hi), law, options).state();
+
+  auto compact = [&](double friction) {
+    ContactParameters trial_law = law;
+    trial_law.friction = friction;
+    Simulation sim(start, trial_law, options);
+    CompactionResult result = compact_isotropically(sim, prep.compaction);
+    if (!result.converged)
+      throw std::runtime_error("preparation: compaction to " + std::to_string(prep.pressure) +
+                               " Pa did not settle (" + result.summary() +
+                               "); raise preparation.max_steps or loosen stress_tolerance / "
+                               "max_unbalanced_force");
+    r.compaction = result;
+    if (log) {
+      std::ostringstream msg;
+      msg << "compaction with friction " << friction << ": void ratio " << void_ratio(sim) << ", "
+          << result.summary();
+      log(msg.str());
+    }
+    return sim;
+  };
+
+  // The void ratio grows with the compaction friction: bracket [0, 1], then regula falsi
+  // (Illinois variant) until it is within tolerance of the target.
+  auto search = [&](double* friction) {
+    const double target = prep.target_void_ratio, tol = prep.void_ratio_tolerance;
+    double f_lo = 0.0, f_hi = 1.0;
+    Simulation best = compact(f_lo);
+    double e_lo = void_ratio(best) - target;
+    *friction = f_lo;
+    r.friction_trials = 1;
+    if (e_lo > tol)
+      throw std::runtime_error("preparation: target_void_ratio " + std::to_string(target) +
+                               " is below the densest this packing reaches (" +
+                               std::to_string(e_lo + target) + " with frictionless compaction)");
+    if (std::abs(e_lo) <= tol) return best;
+    best = compact(f_hi);
+    double e_hi = void_ratio(best) - target;
+    *friction = f_hi;
+    r.friction_trials = 2;
+    if (e_hi < -tol)
+      throw std::runtime_error("preparation: target_void_ratio " + std::to_string(target) +
+                               " is above the loosest this packing reaches (" +
+                               std::to_string(e_hi + target) + " at compaction friction 1)");
+    int side = 0;
+    while (std::abs(void_ratio(best) - target) > tol && r.friction_trials < 12) {
+      const double f = (f_lo * e_hi - f_hi * e_lo) / (e_hi - e_lo);
+      best = compact(f);
+      *friction = f;
+      ++r.friction_trials;
+      const double e = void_ratio(best) - target;
+      if (e > 0.0) {
+        f_hi = f, e_hi = e;
+        if (side == 1) e_lo *= 0.5;
+        side = 1;
+      } else {
+        f_lo = f, e_lo = e;
+        if (side == -1) e_hi *= 0.5;
+        side = -1;
+      }
+    }
+    if (std::abs(void_ratio(best) - target) > tol)
+      throw std::runtime_error("preparation: no compaction friction in [0, 1] gave void ratio " +
+                               std::to_string(target) + " within " + std::to_string(tol) +
+                               " after 12 compactions (last " + std::to_string(void_ratio(best)) +
+                               "); loosen void_ratio_tolerance");
+    return best;
+  };
+
+  double friction = prep.compaction_friction;
+  Simulation result = prep.target_void_ratio > 0.0 ? search(&friction) : compact(friction);
+  r.compaction_friction = friction;
+  r.void_ratio = void_ratio(result);
+  r.coordination_number = result.macro_record().coordination_number;
+  r.fabric_major = major_direction(contact_normal_fabric(result), true);
+  r.axis_minor = major_direction(particle_axis_fabric(result.particles()), false);
+  return result;
+}
+
+}  // namespace dem

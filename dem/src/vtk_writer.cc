@@ -1,0 +1,104 @@
+#include "dem/vtk_writer.h"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+
+namespace dem {
+namespace {
+
+std::ofstream open_for_writing(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out.precision(10);
+  return out;
+}
+
+void write_collection(const std::string& path, const std::vector<std::pair<double, std::string>>& files) {
+  std::ofstream out = open_for_writing(path);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (const auto& [time, file] : files)
+    out << "<DataSet timestep=\"" << time << "\" file=\"" << file << "\"/>\n";
+  out << "</Collection>\n</VTKFile>\n";
+}
+
+}  // namespace
+
+void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
+  {
+    std::ofstream out = open_for_writing(stem + "_spheres.vtu");
+    const std::size_t n = s.spheres.size();
+    std::map<std::int64_t, const ParticleRecord*> by_id;
+    for (const ParticleRecord& p : s.particles) by_id[p.id] = &p;
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
+        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
+        << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const auto& x : s.spheres) out << x[0] << ' ' << x[1] << ' ' << x[2] << '\n';
+    out << "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n; ++k) out << k << '\n';
+    out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n; ++k) out << k + 1 << '\n';
+    out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n; ++k) out << "1\n";  // VTK_VERTEX
+    out << "</DataArray>\n</Cells>\n<PointData Scalars=\"radius\">\n"
+        << "<DataArray type=\"Float64\" Name=\"radius\" format=\"ascii\">\n";
+    for (const auto& x : s.spheres) out << x[3] << '\n';
+    out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"body_id\" format=\"ascii\">\n";
+    for (std::int64_t b : s.sphere_body) out << b << '\n';
+    out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::int64_t b : s.sphere_body) {
+      const auto& v = by_id.at(b)->velocity;
+      out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
+    }
+    out << "</DataArray>\n</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  }
+  {
+    // Body-body contacts as lines between the two centroids (branch vectors).
+    std::vector<const ContactRecord*> contacts;
+    for (const ContactRecord& c : s.contacts)
+      if (c.wall < 0) contacts.push_back(&c);
+    std::map<std::int64_t, const ParticleRecord*> by_id;
+    for (const ParticleRecord& p : s.particles) by_id[p.id] = &p;
+    std::ofstream out = open_for_writing(stem + "_contacts.vtu");
+    const std::size_t n = contacts.size();
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
+        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << 2 * n << "\" NumberOfCells=\"" << n << "\">\n"
+        << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const ContactRecord* c : contacts) {
+      const auto& a = by_id.at(c->body_a)->position;
+      const auto& b = by_id.at(c->body_b)->position;
+      out << a[0] << ' ' << a[1] << ' ' << a[2] << '\n' << b[0] << ' ' << b[1] << ' ' << b[2] << '\n';
+    }
+    out << "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < 2 * n; ++k) out << k << '\n';
+    out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n; ++k) out << 2 * (k + 1) << '\n';
+    out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n; ++k) out << "3\n";  // VTK_LINE
+    out << "</DataArray>\n</Cells>\n<CellData Scalars=\"normal_force\">\n"
+        << "<DataArray type=\"Float64\" Name=\"normal_force\" format=\"ascii\">\n";
+    for (const ContactRecord* c : contacts) out << c->normal_force << '\n';
+    out << "</DataArray>\n<DataArray type=\"Int32\" Name=\"sliding\" format=\"ascii\">\n";
+    for (const ContactRecord* c : contacts) out << c->sliding << '\n';
+    out << "</DataArray>\n</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  }
+}
+
+int export_run_to_vtk(const RunFile& run, const std::string& folder) {
+  std::filesystem::create_directories(folder);
+  std::vector<std::pair<double, std::string>> spheres, contacts;
+  const int n = run.num_snapshots();
+  for (int k = 0; k < n; ++k) {
+    const Snapshot s = run.read_snapshot(k);
+    const std::string name = "snapshot_" + std::to_string(k);
+    write_snapshot_vtu(s, folder + "/" + name);
+    spheres.emplace_back(s.time, name + "_spheres.vtu");
+    contacts.emplace_back(s.time, name + "_contacts.vtu");
+  }
+  write_collection(folder + "/spheres.pvd", spheres);
+  write_collection(folder + "/contacts.pvd", contacts);
+  return n;
+}
+
+}  // namespace dem
