@@ -7,7 +7,7 @@
 // the share of the time spent in detection, forces and integration.
 //
 //   dem_throughput [--bodies 2000,10000] [--steps 2000] [--threads 1,2] [--seed 1]
-//                  [--cache out/bench]   (prepared packings are kept there and reused)
+//                  [--skin 0.2] [--cache out/bench]   (prepared packings are kept and reused)
 #include <omp.h>
 
 #include <chrono>
@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
   int steps = 2000;
   std::uint64_t seed = 1;
   std::string cache_folder = "out/bench";
+  double skin_ratio = dem::SimulationOptions{}.skin_ratio;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string flag = argv[k], value = argv[k + 1];
     if (flag == "--bodies") body_counts = parse_list(value);
@@ -84,14 +85,15 @@ int main(int argc, char** argv) {
     else if (flag == "--steps") steps = std::atoi(value.c_str());
     else if (flag == "--seed") seed = std::strtoull(value.c_str(), nullptr, 10);
     else if (flag == "--cache") cache_folder = value;
+    else if (flag == "--skin") skin_ratio = std::atof(value.c_str());
     else {
       std::fprintf(stderr, "unknown option %s\n", flag.c_str());
       return 1;
     }
   }
-  std::printf("| bodies | kind | threads | contacts | steps | wall s | body-steps/s/core | "
+  std::printf("| bodies | kind | threads | contacts | candidates | steps | wall s | body-steps/s/core | "
               "sphere-steps/s/core | contact-steps/s/core | detect %% | forces %% | integrate %% |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int bodies : body_counts) {
     for (bool clumps : {true, false}) {
       omp_set_num_threads(omp_get_num_procs());
@@ -101,7 +103,9 @@ int main(int argc, char** argv) {
         dem::Particles particles = prepared.particles();
         dem::ContactParameters law = prepared.contact_parameters();
         law.friction = 0.5773502691896257;
-        dem::Simulation sim(std::move(particles), prepared.walls(), law, prepared.options());
+        dem::SimulationOptions options = prepared.options();
+        options.skin_ratio = skin_ratio;
+        dem::Simulation sim(std::move(particles), prepared.walls(), law, options);
         sim.run(50);  // build the lists and warm the caches
         const dem::PhaseTimings before = sim.timings();
         const auto start = std::chrono::steady_clock::now();
@@ -115,8 +119,9 @@ int main(int argc, char** argv) {
         const double total = detect + forces + integrate;
         const double contacts = sim.num_touching_pairs();
         const double per_core = static_cast<double>(steps) / seconds / threads;
-        std::printf("| %d | %s | %d | %.0f | %d | %.2f | %.3g | %.3g | %.3g | %.1f | %.1f | %.1f |\n",
-                    bodies, clumps ? "clumps" : "spheres", threads, contacts, steps, seconds,
+        std::printf("| %d | %s | %d | %.0f | %d | %d | %.2f | %.3g | %.3g | %.3g | %.1f | %.1f | %.1f |\n",
+                    bodies, clumps ? "clumps" : "spheres", threads, contacts, sim.contacts().num_pairs(),
+                    steps, seconds,
                     bodies * per_core, sim.particles().num_spheres() * per_core,
                     contacts * per_core, 100 * detect / total, 100 * forces / total,
                     100 * integrate / total);

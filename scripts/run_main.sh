@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the main job. At this stage of the project (DEM core), the main job
-# prepares a small specimen of two-sphere clumps by isotropic compaction to 100 kPa and prints
-# its state; later stages extend it to the full pipeline (triaxial, SFF, calibration, FE).
+# Sets up, builds and runs the main job. At this stage of the project (the DEM), the main job
+# prepares a small dense specimen of two-sphere clumps, runs a drained triaxial compression on it,
+# writes the run file, exports its snapshots for ParaView and plots the curves, all under out/main.
+# Pass another config as the first argument (e.g. bench/reference/dense_100kPa.toml).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+config=${1:-examples/quick_triaxial.toml}
 ./scripts/install_deps.sh
 ./scripts/build.sh
-./build/sffcal compact "$@"
+mkdir -p out/main
+./build/sffcal dem -c "$config" -o out/main/triaxial.h5
+./build/sffcal vtk out/main/triaxial.h5 -o out/main/vtk
+/usr/bin/python3 bench/reference/plot_triaxial.py out/main/triaxial.h5 out/main/triaxial.png
+echo "main job done: out/main/triaxial.h5 (HDF5, see docs/run-file.md), out/main/triaxial.png, out/main/vtk/spheres.pvd"

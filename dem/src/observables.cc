@@ -11,7 +11,7 @@ int Simulation::num_touching_pairs() const {
   const int np = contacts_.num_pairs();
   return deterministic_sum(np, 0, [&](int begin, int end) {
     int n = 0;
-    for (int p = begin; p < end; ++p) n += slot_overlap_[p] > 0.0;
+    for (int p = begin; p < end; ++p) n += slots_[p].overlap > 0.0;
     return n;
   });
 }
@@ -26,10 +26,10 @@ Eigen::Matrix3d Simulation::contact_stress(bool include_walls) const {
       deterministic_sum(C.num_pairs(), Eigen::Matrix3d::Zero().eval(), [&](int begin, int end) {
         Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
         for (int p = begin; p < end; ++p) {
-          if (slot_overlap_[p] == 0.0) continue;
+          if (slots_[p].overlap == 0.0) continue;
           const Eigen::Vector3d branch =
               P.position[P.sphere_body[C.pair_j[p]]] - P.position[P.sphere_body[C.pair_i[p]]];
-          s.noalias() += branch * slot_force_[p].transpose();
+          s.noalias() += branch * slots_[p].force.transpose();
         }
         return s;
       });
@@ -37,13 +37,13 @@ Eigen::Matrix3d Simulation::contact_stress(bool include_walls) const {
   if (include_walls) {
     for (int k = 0; k < C.num_wall_candidates(); ++k) {
       const int slot = C.num_pairs() + k;
-      if (slot_overlap_[slot] == 0.0) continue;
+      if (slots_[slot].overlap == 0.0) continue;
       const int s = C.wall_sphere[k];
       const Eigen::Vector3d n = walls_[C.wall_index[k]].inward_normal();
       // Minus the lever from the centroid to the contact point (the wall plays body A).
-      const Eigen::Vector3d lever = (P.sphere_radius[s] - 0.5 * slot_overlap_[slot]) * n -
+      const Eigen::Vector3d lever = (P.sphere_radius[s] - 0.5 * slots_[slot].overlap) * n -
                                     (P.sphere_position[s] - P.position[P.sphere_body[s]]);
-      total.noalias() += lever * slot_force_[slot].transpose();
+      total.noalias() += lever * slots_[slot].force.transpose();
     }
   }
   return 0.5 * (total + total.transpose()) / volume;
@@ -72,10 +72,10 @@ double Simulation::unbalanced_force_ratio() const {
   int touching = 0;
   const double contact = deterministic_sum(contacts_.num_slots(), 0.0, [&](int begin, int end) {
     double s = 0.0;
-    for (int k = begin; k < end; ++k) s += slot_force_[k].norm();
+    for (int k = begin; k < end; ++k) s += slots_[k].force.norm();
     return s;
   });
-  for (double overlap : slot_overlap_) touching += overlap > 0.0;
+  for (const SlotResult& r : slots_) touching += r.overlap > 0.0;
   if (touching == 0) return net > 0.0 ? 1.0 : 0.0;
   return (net / P.num_bodies()) / (contact / touching);
 }
@@ -83,14 +83,14 @@ double Simulation::unbalanced_force_ratio() const {
 double Simulation::max_friction_utilisation() const {
   double worst = 0.0;
   for (int k = 0; k < contacts_.num_slots(); ++k) {
-    if (slot_overlap_[k] == 0.0) continue;
+    if (slots_[k].overlap == 0.0) continue;
     const bool wall = k >= contacts_.num_pairs();
     const double mu = wall ? contact_.wall_friction : contact_.friction;
     const Eigen::Vector3d n =
         wall ? walls_[contacts_.wall_index[k - contacts_.num_pairs()]].inward_normal()
              : contacts_.pair_normal[k];
-    const double fn = slot_force_[k].dot(n);
-    const double ft = (slot_force_[k] - fn * n).norm();
+    const double fn = slots_[k].force.dot(n);
+    const double ft = (slots_[k].force - fn * n).norm();
     if (ft == 0.0) continue;
     worst = std::max(worst, mu > 0.0 && fn > 0.0 ? ft / (mu * fn) : HUGE_VAL);
   }
@@ -102,24 +102,24 @@ std::vector<ContactRecord> Simulation::contact_records(bool include_walls) const
   const ContactList& C = contacts_;
   std::vector<ContactRecord> records;
   auto fill_force = [&](ContactRecord& r, int slot, const Eigen::Vector3d& n) {
-    const Eigen::Vector3d& f = slot_force_[slot];
+    const Eigen::Vector3d& f = slots_[slot].force;
     const double fn = f.dot(n);
     const Eigen::Vector3d ft = f - fn * n;
-    r.overlap = slot_overlap_[slot];
+    r.overlap = slots_[slot].overlap;
     r.normal_force = fn;
-    r.sliding = slot_sliding_[slot];
+    r.sliding = slots_[slot].sliding;
     for (int k = 0; k < 3; ++k) {
       r.normal[k] = n[k];
       r.tangential_force[k] = ft[k];
     }
   };
   for (int p = 0; p < C.num_pairs(); ++p) {
-    if (slot_overlap_[p] == 0.0) continue;
+    if (slots_[p].overlap == 0.0) continue;
     const int i = C.pair_i[p], j = C.pair_j[p];
     const int a = P.sphere_body[i], b = P.sphere_body[j];
     const Eigen::Vector3d& n = C.pair_normal[p];
     const Eigen::Vector3d point =
-        P.sphere_position[i] + (P.sphere_radius[i] - 0.5 * slot_overlap_[p]) * n;
+        P.sphere_position[i] + (P.sphere_radius[i] - 0.5 * slots_[p].overlap) * n;
     const Eigen::Vector3d branch = P.position[b] - P.position[a];
     ContactRecord r;
     r.body_a = P.id[a];
@@ -134,11 +134,11 @@ std::vector<ContactRecord> Simulation::contact_records(bool include_walls) const
   if (!include_walls) return records;
   for (int k = 0; k < C.num_wall_candidates(); ++k) {
     const int slot = C.num_pairs() + k;
-    if (slot_overlap_[slot] == 0.0) continue;
+    if (slots_[slot].overlap == 0.0) continue;
     const int s = C.wall_sphere[k], w = C.wall_index[k];
     const Eigen::Vector3d n = walls_[w].inward_normal();
     const Eigen::Vector3d point =
-        P.sphere_position[s] - (P.sphere_radius[s] - 0.5 * slot_overlap_[slot]) * n;
+        P.sphere_position[s] - (P.sphere_radius[s] - 0.5 * slots_[slot].overlap) * n;
     ContactRecord r;
     r.body_b = P.id[P.sphere_body[s]];
     r.wall = w;

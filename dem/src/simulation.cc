@@ -77,10 +77,7 @@ Simulation::Simulation(SimulationState state, ContactParameters contact,
     throw std::invalid_argument("Simulation: the saved state has one servo move per wall");
   wall_last_move_ = std::move(state.wall_last_move);
   const int slots = contacts_.num_slots();
-  slot_force_.assign(slots, Eigen::Vector3d::Zero());
-  slot_moment_.assign(slots, Eigen::Vector3d::Zero());
-  slot_overlap_.assign(slots, 0.0);
-  slot_sliding_.assign(slots, 0);
+  slots_.assign(slots, SlotResult{});
 }
 
 SimulationState Simulation::state() const {
@@ -194,14 +191,11 @@ void Simulation::rebuild_contacts() {
   contacts_.build(particles_, walls_, skin_, sort_now ? &old_to_new : nullptr,
                   options_.min_parallel_items);
   const int slots = contacts_.num_slots();
-  slot_force_.assign(slots, Eigen::Vector3d::Zero());
-  slot_moment_.assign(slots, Eigen::Vector3d::Zero());
-  slot_overlap_.assign(slots, 0.0);
-  slot_sliding_.assign(slots, 0);
+  slots_.assign(slots, SlotResult{});
   rebuild_due_ = false;
 }
 
-template <bool kFriction, bool kViscous>
+template <bool kClumps, bool kFriction, bool kViscous>
 void Simulation::compute_pair_forces() {
   const Particles& P = particles_;
   ContactList& C = contacts_;
@@ -221,10 +215,7 @@ void Simulation::compute_pair_forces() {
       if (C.pair_touching[p]) {  // separation erases the tangential history
         C.pair_touching[p] = 0;
         C.pair_tangential[p].setZero();
-        slot_force_[p].setZero();
-        slot_moment_[p].setZero();
-        slot_overlap_[p] = 0.0;
-        slot_sliding_[p] = 0;
+        slots_[p] = SlotResult{};
       }
       continue;
     }
@@ -236,11 +227,16 @@ void Simulation::compute_pair_forces() {
     Eigen::Vector3d ft = Eigen::Vector3d::Zero();
     bool sliding = false;
     if constexpr (kFriction || kViscous) {
-      const int a = P.sphere_body[i], b = P.sphere_body[j];
-      const Eigen::Vector3d point = P.sphere_position[i] + (ri - 0.5 * overlap) * n;
-      const Eigen::Vector3d v_rel =
-          P.velocity[b] + P.angular_velocity[b].cross(point - P.position[b]) - P.velocity[a] -
-          P.angular_velocity[a].cross(point - P.position[a]);
+      // Without clumps, sphere s is body s and the levers lie along the normal.
+      const int a = kClumps ? P.sphere_body[i] : i, b = kClumps ? P.sphere_body[j] : j;
+      Eigen::Vector3d lever_a = (ri - 0.5 * overlap) * n, lever_b = -(rj - 0.5 * overlap) * n;
+      if constexpr (kClumps) {
+        const Eigen::Vector3d point = P.sphere_position[i] + lever_a;
+        lever_a = point - P.position[a];
+        lever_b = point - P.position[b];
+      }
+      const Eigen::Vector3d v_rel = P.velocity[b] + P.angular_velocity[b].cross(lever_b) -
+                                    P.velocity[a] - P.angular_velocity[a].cross(lever_a);
       const double vn = v_rel.dot(n);
       if constexpr (kViscous) {
         const double m_red =
@@ -259,10 +255,10 @@ void Simulation::compute_pair_forces() {
     }
     C.pair_normal[p] = n;
     C.pair_touching[p] = 1;
-    slot_force_[p] = fn * n + ft;
-    slot_moment_[p] = n.cross(ft);
-    slot_overlap_[p] = overlap;
-    slot_sliding_[p] = sliding;
+    slots_[p].force = fn * n + ft;
+    slots_[p].moment = n.cross(ft);
+    slots_[p].overlap = overlap;
+    slots_[p].sliding = sliding;
     worst_ratio = std::max(worst_ratio, overlap / std::min(ri, rj));
   }
   if (worst_ratio > options_.max_overlap_ratio) {
@@ -294,10 +290,7 @@ void Simulation::compute_wall_forces() {
       if (C.wall_touching[k]) {
         C.wall_touching[k] = 0;
         C.wall_tangential[k].setZero();
-        slot_force_[slot].setZero();
-        slot_moment_[slot].setZero();
-        slot_overlap_[slot] = 0.0;
-        slot_sliding_[slot] = 0;
+        slots_[slot] = SlotResult{};
       }
       continue;
     }
@@ -328,10 +321,10 @@ void Simulation::compute_wall_forces() {
       }
     }
     C.wall_touching[k] = 1;
-    slot_force_[slot] = fn * n + ft;
-    slot_moment_[slot] = n.cross(ft);
-    slot_overlap_[slot] = overlap;
-    slot_sliding_[slot] = sliding;
+    slots_[slot].force = fn * n + ft;
+    slots_[slot].moment = n.cross(ft);
+    slots_[slot].overlap = overlap;
+    slots_[slot].sliding = sliding;
     wall_force_[w] += fn;
     wall_stiffness_[w] += stiffness;
   }
@@ -350,13 +343,13 @@ void Simulation::sum_body_forces() {
       Eigen::Vector3d f_s = Eigen::Vector3d::Zero();
       for (int e = C.incidence_offset[s]; e < C.incidence_offset[s + 1]; ++e) {
         const int code = C.incidence[e], slot = code >> 1;
-        if (slot_overlap_[slot] == 0.0) continue;
-        if (code & 1) f_s += slot_force_[slot];
-        else f_s -= slot_force_[slot];
+        if (slots_[slot].overlap == 0.0) continue;
+        if (code & 1) f_s += slots_[slot].force;
+        else f_s -= slots_[slot].force;
         if constexpr (kMoments) {
           // Lever from the sphere centre to the contact point (mid-overlap): the moment is
           // -(r - overlap/2) n x f for either body of the contact.
-          torque -= (P.sphere_radius[s] - 0.5 * slot_overlap_[slot]) * slot_moment_[slot];
+          torque -= (P.sphere_radius[s] - 0.5 * slots_[slot].overlap) * slots_[slot].moment;
         }
       }
       force += f_s;
@@ -451,9 +444,10 @@ void Simulation::step() {
   timings_.detection += seconds_since(start);
 
   start = Clock::now();
-  with_flags([&](auto friction, auto viscous) {
-    compute_pair_forces<decltype(friction)::value, decltype(viscous)::value>();
-  }, features_.friction, features_.viscous_damping);
+  with_flags([&](auto clumps, auto friction, auto viscous) {
+    compute_pair_forces<decltype(clumps)::value, decltype(friction)::value,
+                        decltype(viscous)::value>();
+  }, features_.clumps, features_.friction, features_.viscous_damping);
   with_flags([&](auto friction, auto viscous) {
     compute_wall_forces<decltype(friction)::value, decltype(viscous)::value>();
   }, features_.wall_friction, features_.viscous_damping);

@@ -31,7 +31,7 @@ struct SimulationOptions {
   /// Fraction of the critical step used when time_step is 0.
   double time_step_safety = 0.2;
   /// Verlet skin as a fraction of the largest sphere diameter.
-  double skin_ratio = 0.2;
+  double skin_ratio = 0.1;
   /// Re-sort the bodies in space every this many list builds (0: never).
   int sort_every_builds = 10;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  ///< [m/s^2]
@@ -138,7 +138,7 @@ class Simulation {
 
  private:
   void rebuild_contacts();
-  template <bool kFriction, bool kViscous>
+  template <bool kClumps, bool kFriction, bool kViscous>
   void compute_pair_forces();
   template <bool kWallFriction, bool kViscous>
   void compute_wall_forces();
@@ -164,11 +164,15 @@ class Simulation {
   bool rebuild_due_ = true;
   int box_walls_[3][2] = {{-1, -1}, {-1, -1}, {-1, -1}};
 
-  // Per-slot results of this step (slots as in ContactList).
-  std::vector<Eigen::Vector3d> slot_force_;   ///< force on body B [N]
-  std::vector<Eigen::Vector3d> slot_moment_;  ///< normal x force, for the torques [N]
-  std::vector<double> slot_overlap_;          ///< [m], 0 when not touching
-  std::vector<std::uint8_t> slot_sliding_;
+  /// What one contact slot (as in ContactList) produced this step: one cache line, so the
+  /// per-body force sums fetch one line per contact.
+  struct alignas(64) SlotResult {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< force on body B [N]
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();  ///< normal x force, for the torques [N]
+    double overlap = 0.0;                              ///< [m], 0 when not touching
+    std::uint8_t sliding = 0;
+  };
+  std::vector<SlotResult> slots_;
   std::vector<double> wall_force_, wall_stiffness_, wall_last_move_;
   PhaseTimings timings_;
 };
