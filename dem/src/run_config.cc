@@ -176,27 +176,21 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
   };
   const std::string where = source + ": ";
   c.triaxial.confining_stress = 0.0;
+  auto apply = [&](const std::string& key, const toml::node& value) {
+    const auto it = setters.find(key);
+    if (it == setters.end()) throw std::invalid_argument(where + "unknown key '" + key + "'");
+    try {
+      it->second(value, key);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(where + e.what());
+    }
+  };
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     if (const toml::table* section = node.as_table()) {
-      for (const auto& [sub, value] : *section) {
-        const std::string full = name + "." + std::string(sub.str());
-        const auto it = setters.find(full);
-        if (it == setters.end()) throw std::invalid_argument(where + "unknown key '" + full + "'");
-        try {
-          it->second(value, full);
-        } catch (const std::invalid_argument& e) {
-          throw std::invalid_argument(where + e.what());
-        }
-      }
-      continue;
-    }
-    const auto it = setters.find(name);
-    if (it == setters.end()) throw std::invalid_argument(where + "unknown key '" + name + "'");
-    try {
-      it->second(node, name);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(where + e.what());
+      for (const auto& [sub, value] : *section) apply(name + "." + std::string(sub.str()), value);
+    } else {
+      apply(name, node);
     }
   }
 

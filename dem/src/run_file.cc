@@ -33,6 +33,18 @@ std::vector<Eigen::Vector3d> read_vec3(hid_t loc, const std::string& name) {
   return v;
 }
 
+WallRecord wall_record(const Wall& wall, double normal_force) {
+  WallRecord r;
+  r.axis = wall.axis;
+  r.upper = wall.upper;
+  r.stress_controlled = wall.mode == WallMode::kStress;
+  r.position = wall.position;
+  r.velocity = wall.velocity;
+  r.normal_force = normal_force;
+  r.target_stress = wall.target_stress;
+  return r;
+}
+
 template <typename T>
 void write_vector(hid_t loc, const std::string& name, const std::vector<T>& v, hid_t type) {
   h5::write_dataset(loc, name, type, v.data(), v.size());
@@ -291,16 +303,7 @@ void RunFile::write_checkpoint(const SimulationState& state, const CheckpointExt
     write_vector(g, "build_wall_position", c.build_wall_position, H5T_NATIVE_DOUBLE);
 
     std::vector<WallRecord> walls;
-    for (const Wall& w : state.walls) {
-      WallRecord r;
-      r.axis = w.axis;
-      r.upper = w.upper;
-      r.stress_controlled = w.mode == WallMode::kStress;
-      r.position = w.position;
-      r.velocity = w.velocity;
-      r.target_stress = w.target_stress;
-      walls.push_back(r);
-    }
+    for (const Wall& w : state.walls) walls.push_back(wall_record(w, 0.0));
     h5::write_dataset(g, "walls", h5::wall_record_type().get(), walls.data(), walls.size());
     write_vector(g, "wall_last_move", state.wall_last_move, H5T_NATIVE_DOUBLE);
     group.reset();
@@ -414,18 +417,8 @@ Snapshot take_snapshot(const Simulation& sim, double axial_strain) {
     s.sphere_body.push_back(p.id[p.sphere_body[k]]);
   }
   s.contacts = sim.contact_records(true);
-  for (std::size_t w = 0; w < sim.walls().size(); ++w) {
-    const Wall& wall = sim.walls()[w];
-    WallRecord r;
-    r.axis = wall.axis;
-    r.upper = wall.upper;
-    r.stress_controlled = wall.mode == WallMode::kStress;
-    r.position = wall.position;
-    r.velocity = wall.velocity;
-    r.normal_force = sim.wall_forces()[w];
-    r.target_stress = wall.target_stress;
-    s.walls.push_back(r);
-  }
+  for (std::size_t w = 0; w < sim.walls().size(); ++w)
+    s.walls.push_back(wall_record(sim.walls()[w], sim.wall_forces()[w]));
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include "dem/compaction.h"
 #include "dem/packing.h"
 #include "dem/simulation.h"
+#include "specimen_fixture.h"
 
 namespace dem {
 namespace {
@@ -18,17 +19,7 @@ constexpr std::uint64_t kSeed = 7;
 
 Simulation loose_specimen(double friction, std::uint64_t seed = kSeed,
                           double centre_distance_ratio = 0.5) {
-  GrainSpec grains;
-  grains.centre_distance_ratio = centre_distance_ratio;
-  Particles p = random_lattice_packing(kBodies, grains, seed);
-  Eigen::Vector3d lo, hi;
-  bounding_box(p, lo, hi);
-  ContactParameters law;
-  law.friction = friction;
-  SimulationOptions options;
-  options.local_damping = 0.7;
-  options.servo.max_speed = 0.5;
-  return Simulation(std::move(p), box_walls(lo, hi), law, options);
+  return testing::loose_specimen(kBodies, friction, seed, centre_distance_ratio);
 }
 
 // One compacted specimen shared by the tests that only read or copy it.
