@@ -1,0 +1,51 @@
+// The SFF estimators of sff-theory.md §§2-3: average stress, fabric and anisotropy tensors, and
+// the normal and tangential force statistics. Pure functions of contact records; wall contacts
+// are skipped wherever a statistic is defined on body-body contacts only.
+#pragma once
+
+#include <Eigen/Core>
+#include <stdexcept>
+
+#include "sff/contacts.h"
+
+namespace sff {
+
+/// Contact form of the Love-Weber stress over body-body contacts, (1/V) sum sym(l (x) f) [Pa].
+Eigen::Matrix3d contact_stress(ContactSpan contacts, double volume);
+
+/// Number of body-body contacts.
+std::size_t count_body_contacts(ContactSpan contacts);
+
+/// Fabric tensor phi = (1/N_c) sum n (x) n (trace 1).
+Eigen::Matrix3d fabric_tensor(ContactSpan contacts);
+
+/// Anisotropy tensor A = (15/2) dev(phi): E(n) = (1 + n.A.n) / 4 pi to second order.
+Eigen::Matrix3d fabric_anisotropy(const Eigen::Matrix3d& fabric);
+
+/// Normalisation of forces (sff-theory.md §3, [PROP]): f_hat = f l / (2 E v_bar), with
+/// l = branch . normal, E the grain modulus, v_bar the mean solid volume per body.
+struct ForceScale {
+  double youngs_modulus = 150e6;    ///< [Pa]
+  double mean_solid_volume = 0.0;   ///< [m^3]
+  double factor(const ContactRecord& c) const;
+};
+
+/// Normal-force statistics: N = (1/N_c) sum f_hat_n n n / (1 + n.A.n), Lambda = tr N,
+/// F = 15 / (2 Lambda) dev N, so that the mean normal force by direction is Lambda (1 + n.F.n).
+struct NormalForceStatistics {
+  double lambda = 0.0;
+  Eigen::Matrix3d anisotropy = Eigen::Matrix3d::Zero();  ///< F
+};
+NormalForceStatistics normal_force_statistics(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
+                                              const ForceScale& scale);
+
+/// Tangential-force tensor F^t = (1 / (Lambda N_c)) sum sym(f_hat_t (x) n) (traceless).
+Eigen::Matrix3d tangential_force_tensor(ContactSpan contacts, double lambda,
+                                        const ForceScale& scale);
+
+/// Thrown for statistics that are undefined (no contacts, Lambda = 0, a non-positive weight).
+struct StatisticsError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace sff
