@@ -114,7 +114,9 @@ TEST(SffEquation, AllSlidingContactsGiveAFrictionTermLinearInMu) {  // T13
     std::vector<ContactRecord> contacts;
     for (int k = 0; k < 20000; ++k) {
       const Eigen::Vector3d n = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
-      Eigen::Vector3d t(-n.z(), 0.0, n.x());  // a fixed field: shear in the x-z plane
+      // A fixed axisymmetric shear field tau ~ S n - (n.S n) n, S = diag(-1/2, -1/2, 1).
+      const Eigen::Vector3d sn(-0.5 * n.x(), -0.5 * n.y(), n.z());
+      Eigen::Vector3d t = sn - n.dot(sn) * n;
       if (t.squaredNorm() < 1e-12) continue;
       t.normalize();
       contacts.push_back(contact(n, 1.0, mu * 1.0 * t, n));  // xi = 1 everywhere
