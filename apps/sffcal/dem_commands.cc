@@ -61,10 +61,24 @@ void prepare_and_save(const dem::RunConfig& config, const std::string& out_path)
               config.preparation.pressure / 1e3, static_cast<unsigned long long>(config.seed),
               omp_get_max_threads());
   dem::PreparationReport report;
-  const dem::Simulation sim = dem::prepare_specimen(config, &report, [](const std::string& msg) {
-    std::printf("  %s\n", msg.c_str());
-    std::fflush(stdout);
-  });
+  std::fflush(stdout);
+  ProgressLine line;  // off a terminal the log gets one line per compaction instead
+  const dem::Simulation sim = dem::prepare_specimen(
+      config, &report,
+      [&](const std::string& msg) {
+        line.finish();
+        std::printf("  %s\n", msg.c_str());
+        std::fflush(stdout);
+      },
+      [&](const dem::CompactionResult& r) {
+        char text[160];
+        std::snprintf(text, sizeof(text),
+                      "compacting: step %lld, worst wall stress error %.2f %%, unbalanced force %.2e",
+                      static_cast<long long>(r.steps), 100.0 * r.worst_stress_error,
+                      r.unbalanced_force_ratio);
+        line.update(-1.0, text);
+      });
+  line.finish();
   dem::RunFile file = dem::RunFile::create(out_path, metadata("specimen", config), {});
   file.write_snapshot(dem::take_snapshot(sim, 0.0));
   file.write_checkpoint(sim.state(), {{"pressure", config.preparation.pressure},

@@ -13,13 +13,15 @@ class ProgressLine {
  public:
   explicit ProgressLine(double every = 0.05) : every_(every), tty_(isatty(fileno(stdout)) != 0) {}
 
-  /// `fraction` in [0, 1] of the work done, `text` the rest of the line.
+  /// `fraction` in [0, 1] of the work done, `text` the rest of the line. A negative fraction
+  /// (work of unknown length) shows the text alone, and only on a terminal.
   void update(double fraction, const std::string& text) {
     if (tty_) {
-      std::printf("\r%5.1f %% %s\033[K", 100.0 * fraction, text.c_str());
+      if (fraction < 0.0) std::printf("\r%s\033[K", text.c_str());
+      else std::printf("\r%5.1f %% %s\033[K", 100.0 * fraction, text.c_str());
       std::fflush(stdout);
       open_ = true;
-    } else if (fraction >= next_) {
+    } else if (fraction >= 0.0 && fraction >= next_) {
       std::printf("%5.1f %% %s\n", 100.0 * fraction, text.c_str());
       std::fflush(stdout);
       while (next_ <= fraction) next_ += every_;

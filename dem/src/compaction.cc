@@ -15,7 +15,8 @@ std::string CompactionResult::summary() const {
   return s.str();
 }
 
-CompactionResult compact_isotropically(Simulation& sim, const CompactionOptions& options) {
+CompactionResult compact_isotropically(Simulation& sim, const CompactionOptions& options,
+                                       const CompactionProgress& progress) {
   if (!sim.has_box()) throw std::invalid_argument("compact_isotropically: needs a box of six walls");
   if (!(options.target_stress > 0.0))
     throw std::invalid_argument("compact_isotropically: target_stress must be positive");
@@ -38,6 +39,8 @@ CompactionResult compact_isotropically(Simulation& sim, const CompactionOptions&
     const bool ok = worst <= options.stress_tolerance &&
                     result.unbalanced_force_ratio <= options.max_unbalanced_force;
     consecutive = ok ? consecutive + 1 : 0;
+    result.steps = sim.step_count() - start;
+    if (progress) progress(result);
     if (consecutive >= 2) {
       result.converged = true;
       break;

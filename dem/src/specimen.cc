@@ -191,7 +191,7 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
 }
 
 Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
-                            const ProgressLog& log) {
+                            const ProgressLog& log, const CompactionProgress& compaction_progress) {
   if (config.threads > 0) omp_set_num_threads(config.threads);
   const PreparationConfig& prep = config.preparation;
   PreparationReport local;
@@ -242,7 +242,7 @@ Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
     ContactParameters trial_law = law;
     trial_law.friction = friction;
     Simulation sim(start, trial_law, options);
-    CompactionResult result = compact_isotropically(sim, prep.compaction);
+    CompactionResult result = compact_isotropically(sim, prep.compaction, compaction_progress);
     if (!result.converged)
       throw std::runtime_error("preparation: compaction to " + std::to_string(prep.pressure) +
                                " Pa did not settle (" + result.summary() +

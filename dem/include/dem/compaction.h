@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "dem/simulation.h"
@@ -16,6 +17,10 @@ struct CompactionOptions {
   int check_every = 200;               ///< steps between checks of the acceptance criteria
 };
 
+struct CompactionResult;
+/// Called after every check with the state so far (for progress displays).
+using CompactionProgress = std::function<void(const CompactionResult&)>;
+
 struct CompactionResult {
   bool converged = false;
   std::int64_t steps = 0;
@@ -27,6 +32,7 @@ struct CompactionResult {
 /// Puts the six walls of the box under stress control at `target_stress` and steps until the
 /// state is accepted (every wall within tolerance and the unbalanced-force ratio below its
 /// threshold, at two consecutive checks) or max_steps pass.
-CompactionResult compact_isotropically(Simulation& simulation, const CompactionOptions& options);
+CompactionResult compact_isotropically(Simulation& simulation, const CompactionOptions& options,
+                                       const CompactionProgress& progress = nullptr);
 
 }  // namespace dem

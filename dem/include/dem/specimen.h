@@ -30,9 +30,11 @@ struct PreparationReport {
 using ProgressLog = std::function<void(const std::string&)>;
 
 /// Prepares the specimen the config describes; the returned simulation holds it at p'0 with the
-/// preparation's friction and damping, its six walls servo-controlled.
+/// preparation's friction and damping, its six walls servo-controlled. `compaction_progress`
+/// is called at every acceptance check of every compaction.
 Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
-                            const ProgressLog& log = nullptr);
+                            const ProgressLog& log = nullptr,
+                            const CompactionProgress& compaction_progress = nullptr);
 
 /// Unit normal of the bedding plane for a loading angle: the plane contains X and makes
 /// `alpha` with the Y axis, so the normal is (0, -sin alpha, cos alpha) (Z for alpha = 0).
