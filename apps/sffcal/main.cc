@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "dem_commands.h"
+#include "sff_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"sffcal " SFFCAL_VERSION
@@ -40,6 +41,12 @@ int main(int argc, char** argv) {
   CLI::App* info = app.add_subcommand("info", "Summarise a run or specimen file");
   info->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
 
+  std::vector<std::string> run_paths;
+  CLI::App* sff = app.add_subcommand("sff", "Stress-force-fabric analysis of every snapshot of "
+                                            "run files (writes /analysis/sff and a CSV)");
+  sff->add_option("runs", run_paths, "run files")->required()->check(CLI::ExistingFile);
+  sff->add_option("-o,--output", out_path, "folder for the CSV tables (default: beside each run)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (config->parsed()) return sffcal::print_default_config(out_path);
@@ -53,6 +60,7 @@ int main(int argc, char** argv) {
     if (dem->parsed()) return sffcal::dem_command(config_path, out_path);
     if (vtk->parsed()) return sffcal::vtk_command(run_path, out_path);
     if (info->parsed()) return sffcal::info_command(run_path);
+    if (sff->parsed()) return sffcal::sff_command(run_paths, out_path);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sffcal: error: %s\n", e.what());
     return 1;

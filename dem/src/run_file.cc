@@ -400,6 +400,28 @@ SimulationState RunFile::read_checkpoint(CheckpointExtras* extras) {
   });
 }
 
+void RunFile::write_table(const std::string& name, const std::vector<std::string>& columns,
+                          const std::vector<std::vector<double>>& rows) {
+  impl_->guard("write table /analysis/" + name, [&] {
+    const std::string path = "analysis/" + name;
+    if (h5::exists(impl_->id(), path)) H5Ldelete(impl_->id(), path.c_str(), H5P_DEFAULT);
+    h5::Handle group = h5::create_group(impl_->id(), path);
+    std::string joined;
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      std::vector<double> column;
+      for (const auto& row : rows) {
+        if (row.size() != columns.size()) throw std::runtime_error("a row has the wrong length");
+        column.push_back(row[k]);
+      }
+      h5::write_dataset(group.get(), columns[k], H5T_NATIVE_DOUBLE, column.data(), column.size());
+      joined += (joined.empty() ? "" : ",") + columns[k];
+    }
+    h5::write_attribute(group.get(), "columns", joined);
+    return 0;
+  });
+  flush();
+}
+
 void RunFile::flush() {
   if (impl_->writable) H5Fflush(impl_->id(), H5F_SCOPE_GLOBAL);
 }

@@ -90,6 +90,11 @@ class RunFile {
   /// resumed run continues the file exactly where the checkpoint left it.
   SimulationState read_checkpoint(CheckpointExtras* extras);
 
+  /// Writes a table of analysis results as /analysis/<name>/<column> (1-D float64 datasets,
+  /// one value per row), replacing any earlier table of that name.
+  void write_table(const std::string& name, const std::vector<std::string>& columns,
+                   const std::vector<std::vector<double>>& rows);
+
   /// Pushes everything written so far to disk (a killed run keeps it).
   void flush();
 
