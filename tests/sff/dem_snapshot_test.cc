@@ -39,16 +39,16 @@ TEST(DemSnapshot, SffEquationPredictsTheContactStressRatio) {
   EXPECT_LT((a.stress - sim.contact_stress(false)).norm(), 1e-9 * a.stress.norm());
   ASSERT_GT(a.eta, 0.8);  // sheared well into the plastic range
   // The SFF equation (C0) misses only the branch remainder and the truncation of E(n) f_n(n):
-  // within 15 % of the stress, and of eta, on 150 clumps.
-  EXPECT_LT(a.sff_error, 0.15);
-  EXPECT_NEAR(a.eta_sff, a.eta, 0.15 * a.eta);
+  // within 10 % of the stress, and of eta, on 150 clumps (measured: 4 %).
+  EXPECT_LT(a.sff_error, 0.10);
+  EXPECT_NEAR(a.eta_sff, a.eta, 0.10 * a.eta);
   EXPECT_LT(a.branch_ratio, 0.1);
   // The anisotropies that carry the shear are positive; the decoupled form is reported.
   EXPECT_GT(a.a_c, 0.0);
   EXPECT_GT(a.a_n, 0.0);
   EXPECT_GT(a.m, 0.0);
   EXPECT_GT(a.sliding_fraction, 0.0);
-  EXPECT_NEAR(a.eta_decoupled, a.eta, 0.25 * a.eta);
+  EXPECT_NEAR(a.eta_decoupled, a.eta, 0.15 * a.eta);
   // Removing rattlers raises the coordination number.
   EXPECT_GE(a.mechanical_coordination, a.coordination);
 }
