@@ -52,7 +52,7 @@ dem::TriaxialSummary shear(dem::Simulation& sim, const dem::RunConfig& config, d
   return summary;
 }
 
-// Prepares a specimen and saves it; returns the prepared simulation's state.
+// Prepares a specimen and saves it as a specimen file (snapshot + checkpoint).
 void prepare_and_save(const dem::RunConfig& config, const std::string& out_path) {
   use_threads(config);
   std::printf("preparing %d %s (d in [%.3g, %.3g] mm), p'0 %.4g kPa, seed %llu, %d threads\n",

@@ -1,7 +1,5 @@
 #include "dem/specimen.h"
 
-#include <omp.h>
-
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <fstream>
@@ -24,8 +22,9 @@ double void_ratio(const Simulation& sim) {
 
 Eigen::Vector3d major_direction(const Eigen::Matrix3d& tensor, bool largest) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(tensor);  // ascending eigenvalues
-  Eigen::Vector3d v = solver.eigenvectors().col(largest ? 2 : 0);
-  const int k = v.cwiseAbs().maxCoeff() == std::abs(v.z()) ? 2 : (v.cwiseAbs().maxCoeff() == std::abs(v.y()) ? 1 : 0);
+  const Eigen::Vector3d v = solver.eigenvectors().col(largest ? 2 : 0);
+  Eigen::Index k = 0;
+  v.cwiseAbs().maxCoeff(&k);
   return v[k] < 0.0 ? (-v).eval() : v;  // a sign convention: the largest component positive
 }
 
@@ -192,7 +191,6 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
 
 Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
                             const ProgressLog& log, const CompactionProgress& compaction_progress) {
-  if (config.threads > 0) omp_set_num_threads(config.threads);
   const PreparationConfig& prep = config.preparation;
   PreparationReport local;
   PreparationReport& r = report ? *report : local;
