@@ -67,8 +67,8 @@ output_strain_interval = 0.002 # a series row every this much axial strain
 snapshot_strain_interval = 0.05
 checkpoint_strain_interval = 0.02
 critical_window = 0.1          # critical state: over this axial strain window ...
-critical_eta_range = 0.05      # ... q/p varies less than this
-critical_volume_range = 0.005  # ... and the volumetric strain less than this
+critical_eta_change = 0.05     # ... the fitted line through q/p changes less than this
+critical_volume_change = 0.005 # ... and through the volumetric strain less than this
 critical_min_strain = 0.2      # not before this axial strain
 )";
 
@@ -170,8 +170,8 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
       {"triaxial.snapshot_strain_interval", real(c.triaxial.snapshot_strain_interval)},
       {"triaxial.checkpoint_strain_interval", real(c.triaxial.checkpoint_strain_interval)},
       {"triaxial.critical_window", real(c.triaxial.critical_window)},
-      {"triaxial.critical_eta_range", real(c.triaxial.critical_eta_range)},
-      {"triaxial.critical_volume_range", real(c.triaxial.critical_volume_range)},
+      {"triaxial.critical_eta_change", real(c.triaxial.critical_eta_change)},
+      {"triaxial.critical_volume_change", real(c.triaxial.critical_volume_change)},
       {"triaxial.critical_min_strain", real(c.triaxial.critical_min_strain)},
   };
   const std::string where = source + ": ";

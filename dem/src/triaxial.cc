@@ -27,14 +27,42 @@ std::size_t column(const std::string& name) {
       std::find(kSeriesNames.begin(), kSeriesNames.end(), name) - kSeriesNames.begin());
 }
 
-double range_of(const std::vector<double>& v, std::size_t from) {
-  const auto [lo, hi] = std::minmax_element(v.begin() + static_cast<std::ptrdiff_t>(from), v.end());
-  return *hi - *lo;
+// Change of the least-squares line through (x, y)[from..] between the first and last x.
+double fitted_change(const std::vector<double>& x, const std::vector<double>& y,
+                     std::size_t from) {
+  const double n = static_cast<double>(x.size() - from);
+  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (std::size_t k = from; k < x.size(); ++k) {
+    sx += x[k];
+    sy += y[k];
+    sxx += x[k] * x[k];
+    sxy += x[k] * y[k];
+  }
+  const double denominator = n * sxx - sx * sx;
+  if (!(denominator > 0.0)) return HUGE_VAL;
+  return (n * sxy - sx * sy) / denominator * (x.back() - x[from]);
 }
 
 }  // namespace
 
 const std::vector<std::string>& triaxial_series_names() { return kSeriesNames; }
+
+bool is_critical_state(const std::vector<double>& strain, const std::vector<double>& eta,
+                       const std::vector<double>& volume, const TriaxialOptions& options,
+                       std::size_t* window_start) {
+  std::size_t start = strain.size();
+  if (strain.empty()) {
+    if (window_start) *window_start = 0;
+    return false;
+  }
+  const double last = strain.back();
+  while (start > 0 && last - strain[start - 1] <= options.critical_window) --start;
+  const bool full_window = start > 0;
+  if (window_start) *window_start = full_window ? start : strain.size();
+  if (!full_window || last < options.critical_min_strain) return false;
+  return std::abs(fitted_change(strain, eta, start)) < options.critical_eta_change &&
+         std::abs(fitted_change(strain, volume, start)) < options.critical_volume_change;
+}
 
 std::string TriaxialOptions::validate() const {
   std::ostringstream e;
@@ -46,8 +74,8 @@ std::string TriaxialOptions::validate() const {
   if (!(snapshot_strain_interval > 0.0)) e << "snapshot_strain_interval must be positive; ";
   if (!(checkpoint_strain_interval > 0.0)) e << "checkpoint_strain_interval must be positive; ";
   if (!(critical_window > 0.0)) e << "critical_window must be positive; ";
-  if (!(critical_eta_range > 0.0)) e << "critical_eta_range must be positive; ";
-  if (!(critical_volume_range > 0.0)) e << "critical_volume_range must be positive; ";
+  if (!(critical_eta_change > 0.0)) e << "critical_eta_change must be positive; ";
+  if (!(critical_volume_change > 0.0)) e << "critical_volume_change must be positive; ";
   return e.str();
 }
 
@@ -211,16 +239,9 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     history_eta_.push_back(eta);
     history_volume_.push_back(eps_v);
 
-    // Critical state: q/p and volume stationary over the last window.
-    bool critical = false;
-    std::size_t window_start = history_strain_.size();
-    while (window_start > 0 && strain - history_strain_[window_start - 1] <= options_.critical_window)
-      --window_start;
-    const bool full_window = window_start > 0;
-    if (full_window && strain >= options_.critical_min_strain) {
-      critical = range_of(history_eta_, window_start) < options_.critical_eta_range &&
-                 range_of(history_volume_, window_start) < options_.critical_volume_range;
-    }
+    std::size_t window_start = 0;
+    const bool critical =
+        is_critical_state(history_strain_, history_eta_, history_volume_, options_, &window_start);
     const bool done = critical || strain >= options_.max_axial_strain;
 
     if (file && (strain >= next_snapshot_ || done)) {
@@ -250,7 +271,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     if (done) {
       summary.stop = critical ? TriaxialStop::kCriticalState : TriaxialStop::kMaxStrain;
       double sum = 0.0;
-      const std::size_t from = full_window ? window_start : 0;
+      const std::size_t from = window_start < history_eta_.size() ? window_start : 0;
       for (std::size_t k = from; k < history_eta_.size(); ++k) sum += history_eta_[k];
       summary.critical_eta = sum / static_cast<double>(history_eta_.size() - from);
       summary.axial_strain = strain;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <random>
 
 #include "specimen_fixture.h"
 
@@ -71,6 +72,51 @@ TEST(Triaxial, RejectsBadOptions) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("strain_rate"), std::string::npos);
   }
+}
+
+}  // namespace
+}  // namespace dem
+
+namespace dem {
+namespace {
+
+// A history that reaches a plateau at 0.3 axial strain, with seeded noise of +-0.1 on q/p and
+// +-0.1 % on the volumetric strain (the size of the fluctuations of 2000 clumps).
+struct History {
+  std::vector<double> strain, eta, volume;
+};
+History plateau_history(double noise_eta, double trend_after) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  History h;
+  for (int k = 0; k <= 250; ++k) {
+    const double e = 0.002 * k;
+    h.strain.push_back(e);
+    h.eta.push_back((e < 0.3 ? 1.8 - 2.5 * e : 1.05 + trend_after * (e - 0.3)) + noise_eta * u(rng));
+    h.volume.push_back((e < 0.3 ? -0.5 * e : -0.15) + 0.001 * u(rng));
+  }
+  return h;
+}
+
+TEST(CriticalState, FoundThroughFluctuationsButNotOnATrend) {
+  TriaxialOptions options;
+  const History flat = plateau_history(0.1, 0.0);
+  std::size_t first = 0;
+  while (first < flat.strain.size() &&
+         !is_critical_state({flat.strain.begin(), flat.strain.begin() + first + 1},
+                            {flat.eta.begin(), flat.eta.begin() + first + 1},
+                            {flat.volume.begin(), flat.volume.begin() + first + 1}, options)) {
+    ++first;
+  }
+  ASSERT_LT(first, flat.strain.size());
+  EXPECT_GE(flat.strain[first], 0.35);  // a full window past the end of the softening
+  EXPECT_LE(flat.strain[first], 0.45);
+  // Still softening at 1 per unit strain: never critical.
+  const History falling = plateau_history(0.1, -1.0);
+  EXPECT_FALSE(is_critical_state(falling.strain, falling.eta, falling.volume, options));
+  // Not before critical_min_strain, whatever the data.
+  options.critical_min_strain = 0.6;
+  EXPECT_FALSE(is_critical_state(flat.strain, flat.eta, flat.volume, options));
 }
 
 }  // namespace

@@ -21,12 +21,13 @@ struct TriaxialOptions {
   double output_strain_interval = 2e-3;    ///< a /series row every this much axial strain
   double snapshot_strain_interval = 0.05;  ///< a snapshot every this much axial strain
   double checkpoint_strain_interval = 0.02;  ///< a checkpoint every this much axial strain
-  /// Critical state: over the last `critical_window` of axial strain the stress ratio q/p varies
-  /// by less than `critical_eta_range` and the volumetric strain by less than
-  /// `critical_volume_range`, once the axial strain exceeds `critical_min_strain`.
+  /// Critical state: over the last `critical_window` of axial strain, the least-squares lines
+  /// through q/p and through the volumetric strain change by less than `critical_eta_change` and
+  /// `critical_volume_change` (a fit, not the raw range, so the fluctuations of a small specimen
+  /// do not hide a stationary state), once the axial strain exceeds `critical_min_strain`.
   double critical_window = 0.1;
-  double critical_eta_range = 0.05;
-  double critical_volume_range = 0.005;
+  double critical_eta_change = 0.05;
+  double critical_volume_change = 0.005;
   double critical_min_strain = 0.2;
 
   std::string validate() const;
@@ -58,6 +59,13 @@ struct TriaxialProgress {
 
 /// The names of the /series columns a triaxial run writes, in order.
 const std::vector<std::string>& triaxial_series_names();
+
+/// The critical-state test of TriaxialOptions on the history so far (axial strain, q/p and
+/// volumetric strain at each output row). `window_start`, when given, receives the index of the
+/// first row of the last window (the size of the history when no full window exists yet).
+bool is_critical_state(const std::vector<double>& axial_strain, const std::vector<double>& eta,
+                       const std::vector<double>& volumetric_strain,
+                       const TriaxialOptions& options, std::size_t* window_start = nullptr);
 
 class TriaxialTest {
  public:
