@@ -7,7 +7,8 @@
 // the share of the time spent in detection, forces and integration.
 //
 //   dem_throughput [--bodies 2000,10000] [--steps 2000] [--threads 1,2] [--seed 1]
-//                  [--skin 0.2] [--cache out/bench]   (prepared packings are kept and reused)
+//                  [--skin 0.1] [--cache out/bench]   (prepared packings are kept and reused)
+//                  [--features 1]   (instead: the cost of each scene feature, one thread)
 #include <omp.h>
 
 #include <chrono>
@@ -70,6 +71,61 @@ dem::Simulation jammed_packing(int bodies, bool clumps, std::uint64_t seed,
   return sim;
 }
 
+// One timed run of `steps` steps from `prepared` with the given law and options; returns the
+// sphere-steps/s per core.
+double sphere_rate(const dem::Simulation& prepared, const dem::ContactParameters& law,
+                   const dem::SimulationOptions& options, int steps, int threads) {
+  omp_set_num_threads(threads);
+  dem::Simulation sim(prepared.particles(), prepared.walls(), law, options);
+  sim.run(50);
+  const auto start = std::chrono::steady_clock::now();
+  sim.run(steps);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sim.particles().num_spheres() * static_cast<double>(steps) / seconds / threads;
+}
+
+// The cost of each feature a scene may declare: the same packing run with one feature switched
+// on or off at a time (one thread), relative to the plain frictionless scene.
+void feature_table(const dem::Simulation& prepared, const char* kind, int steps) {
+  dem::ContactParameters base_law = prepared.contact_parameters();
+  base_law.friction = 0.0;
+  dem::SimulationOptions base = prepared.options();
+  base.local_damping = 0.0;
+  struct Variant {
+    const char* name;
+    dem::ContactParameters law;
+    dem::SimulationOptions options;
+  };
+  std::vector<Variant> variants;
+  variants.push_back({"frictionless, no damping, no gravity", base_law, base});
+  auto with = [&](const char* name, auto&& change) {
+    Variant v{name, base_law, base};
+    change(v);
+    variants.push_back(v);
+  };
+  with("+ grain friction (tan 30)", [](Variant& v) { v.law.friction = 0.5773502691896257; });
+  with("+ wall friction (0.3)", [](Variant& v) { v.law.wall_friction = 0.3; });
+  with("+ gravity", [](Variant& v) { v.options.gravity = {0.0, 0.0, -9.81}; });
+  with("+ local damping (0.7)", [](Variant& v) { v.options.local_damping = 0.7; });
+  with("+ contact viscous damping (0.1)", [](Variant& v) { v.law.normal_damping_ratio = 0.1; });
+  with("all of the above", [](Variant& v) {
+    v.law.friction = 0.5773502691896257;
+    v.law.wall_friction = 0.3;
+    v.options.gravity = {0.0, 0.0, -9.81};
+    v.options.local_damping = 0.7;
+    v.law.normal_damping_ratio = 0.1;
+  });
+  double reference = 0.0;
+  for (const Variant& v : variants) {
+    const double rate = sphere_rate(prepared, v.law, v.options, steps, 1);
+    if (reference == 0.0) reference = rate;
+    std::printf("| %d | %s | %s | %.3g | %.2f |\n", prepared.particles().num_bodies(), kind, v.name,
+                rate, rate / reference);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -78,6 +134,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   std::string cache_folder = "out/bench";
   double skin_ratio = dem::SimulationOptions{}.skin_ratio;
+  bool features = false;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string flag = argv[k], value = argv[k + 1];
     if (flag == "--bodies") body_counts = parse_list(value);
@@ -86,10 +143,18 @@ int main(int argc, char** argv) {
     else if (flag == "--seed") seed = std::strtoull(value.c_str(), nullptr, 10);
     else if (flag == "--cache") cache_folder = value;
     else if (flag == "--skin") skin_ratio = std::atof(value.c_str());
+    else if (flag == "--features") features = value == "1";
     else {
       std::fprintf(stderr, "unknown option %s\n", flag.c_str());
       return 1;
     }
+  }
+  if (features) {
+    std::printf("| bodies | kind | scene | sphere-steps/s (1 thread) | relative |\n|---|---|---|---|---|\n");
+    for (int bodies : body_counts)
+      for (bool clumps : {false, true})
+        feature_table(jammed_packing(bodies, clumps, seed, cache_folder), clumps ? "clumps" : "spheres", steps);
+    return 0;
   }
   std::printf("| bodies | kind | threads | contacts | candidates | steps | wall s | body-steps/s/core | "
               "sphere-steps/s/core | contact-steps/s/core | detect %% | forces %% | integrate %% |\n");
