@@ -41,7 +41,7 @@ struct TriaxialSummary {
   double peak_eta = 0.0, peak_eta_strain = 0.0;
   double critical_eta = 0.0;  ///< mean q/p over the final window (critical if kCriticalState)
   double initial_void_ratio = 0.0, final_void_ratio = 0.0;
-  double worst_lateral_error = 0.0;   ///< max |sigma_lateral - sigma_3| / sigma_3 over the run
+  double worst_lateral_error = 0.0;   ///< max |sigma_lateral - sigma_3| / sigma_3 at output rows
   double max_inertial_number = 0.0;
   std::int64_t steps = 0;
   double wall_seconds = 0.0;
