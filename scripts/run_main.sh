@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs the main job. At this stage of the project (the DEM), the main job
 # prepares a small dense specimen of two-sphere clumps, runs a drained triaxial compression on it,
-# writes the run file, exports its snapshots for ParaView and plots the curves, all under out/main.
+# writes the run file, exports its snapshots for ParaView, analyses them with the SFF equations and
+# plots the curves, all under out/main.
 # Pass another config as the first argument (e.g. bench/reference/dense_100kPa.toml).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,5 +12,7 @@ config=${1:-examples/quick_triaxial.toml}
 mkdir -p out/main
 ./build/sffcal dem -c "$config" -o out/main/triaxial.h5
 ./build/sffcal vtk out/main/triaxial.h5 -o out/main/vtk
+./build/sffcal sff out/main/triaxial.h5 -o out/main
 /usr/bin/python3 bench/reference/plot_triaxial.py out/main/triaxial.h5 out/main/triaxial.png
-echo "main job done: out/main/triaxial.h5 (HDF5, see docs/run-file.md), out/main/triaxial.png, out/main/vtk/spheres.pvd"
+echo "main job done: out/main/triaxial.h5 (HDF5, see docs/run-file.md), out/main/triaxial.png,"
+echo "  out/main/triaxial.h5.sff.csv (SFF table, docs/sff.md), out/main/vtk/spheres.pvd (ParaView)"
