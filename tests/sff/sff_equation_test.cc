@@ -7,6 +7,7 @@
 #include <random>
 
 #include "sff/tensors.h"
+#include "synthetic_contacts.h"
 
 namespace sff {
 namespace {
@@ -64,19 +65,7 @@ TEST(SffEquation, ConciseFormEqualsTheTensorFormForAxisymmetricStates) {  // T10
   }
 }
 
-ContactRecord contact(const Eigen::Vector3d& n, double fn, const Eigen::Vector3d& ft,
-                      const Eigen::Vector3d& branch) {
-  ContactRecord c;
-  c.body_a = 0;
-  c.body_b = 1;
-  for (int k = 0; k < 3; ++k) {
-    c.normal[k] = n[k];
-    c.tangential_force[k] = ft[k];
-    c.branch[k] = branch[k];
-  }
-  c.normal_force = fn;
-  return c;
-}
+using testing::make_contact;
 
 TEST(SffEquation, ExactDecoupledFormReproducesTheStressWithoutTheBranchTerm) {  // T12
   std::mt19937_64 rng(12);
@@ -93,7 +82,7 @@ TEST(SffEquation, ExactDecoupledFormReproducesTheStressWithoutTheBranchTerm) {  
     const Eigen::Vector3d ft = mu * fn * unit(rng) * t;
     // Clump-like branches: not parallel to the normal.
     const Eigen::Vector3d branch = 5e-5 * (n + 0.3 * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)));
-    contacts.push_back(contact(n, fn, ft, branch));
+    contacts.push_back(make_contact(n, fn, ft, branch));
   }
   const Eigen::Matrix3d a = fabric_anisotropy(fabric_tensor(contacts));
   const NormalForceStatistics nf = normal_force_statistics(contacts, a, scale);
@@ -119,7 +108,7 @@ TEST(SffEquation, AllSlidingContactsGiveAFrictionTermLinearInMu) {  // T13
       Eigen::Vector3d t = sn - n.dot(sn) * n;
       if (t.squaredNorm() < 1e-12) continue;
       t.normalize();
-      contacts.push_back(contact(n, 1.0, mu * 1.0 * t, n));  // xi = 1 everywhere
+      contacts.push_back(make_contact(n, 1.0, mu * 1.0 * t, n));  // xi = 1 everywhere
     }
     return contacts;
   };
@@ -149,7 +138,7 @@ TEST(SffEquation, MobilisationFieldGivesBackItsTensor) {  // T14
   for (int k = 0; k < 1'000'000; ++k) {
     const Eigen::Vector3d n = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
     const Eigen::Vector3d m = m0 * n - n.dot(m0 * n) * n;  // xi tau
-    contacts.push_back(contact(n, 1.0, mu * 1.0 * m, n));
+    contacts.push_back(make_contact(n, 1.0, mu * 1.0 * m, n));
   }
   const ForceScale scale{0.5, 1.0};
   const Eigen::Matrix3d a = fabric_anisotropy(fabric_tensor(contacts));

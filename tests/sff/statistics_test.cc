@@ -8,6 +8,7 @@
 #include <random>
 
 #include "sff/tensors.h"
+#include "synthetic_contacts.h"
 
 namespace sff {
 namespace {
@@ -15,26 +16,8 @@ namespace {
 // Forces are normalised with factor (l.n) / (2 E v_bar) = 1 for l = n, E = 1/2, v_bar = 1.
 const ForceScale kUnitScale{0.5, 1.0};
 
-ContactRecord record(const Eigen::Vector3d& n, double normal_force,
-                     const Eigen::Vector3d& tangential = Eigen::Vector3d::Zero(),
-                     const Eigen::Vector3d& branch = Eigen::Vector3d::Zero()) {
-  ContactRecord c;
-  c.body_a = 0;
-  c.body_b = 1;
-  const Eigen::Vector3d l = branch.squaredNorm() > 0.0 ? branch : n;
-  for (int k = 0; k < 3; ++k) {
-    c.normal[k] = n[k];
-    c.branch[k] = l[k];
-    c.tangential_force[k] = tangential[k];
-  }
-  c.normal_force = normal_force;
-  return c;
-}
-
-Eigen::Vector3d random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> gauss;
-  return Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
-}
+using testing::make_contact;
+using testing::random_unit;
 
 // Normals with density E(n) proportional to 1 + b P2(cos theta) about z, by rejection.
 std::vector<Eigen::Vector3d> legendre_normals(double b, int count, std::uint64_t seed) {
@@ -58,7 +41,7 @@ TEST(ContactStress, SimpleCubicLatticeGivesFOverDSquared) {  // T1
     for (int axis = 0; axis < 3; ++axis) {
       Eigen::Vector3d e = Eigen::Vector3d::Zero();
       e[axis] = 1.0;
-      contacts.push_back(record(e, f, Eigen::Vector3d::Zero(), d * e));
+      contacts.push_back(make_contact(e, f, Eigen::Vector3d::Zero(), d * e));
     }
   const double volume = std::pow(n * d, 3);
   const Eigen::Matrix3d sigma = contact_stress(contacts, volume);
@@ -71,7 +54,7 @@ TEST(ContactStress, SimpleCubicLatticeGivesFOverDSquared) {  // T1
 TEST(Fabric, IsotropicNormalsGiveNoAnisotropy) {  // T4
   std::mt19937_64 rng(4);
   std::vector<ContactRecord> contacts;
-  for (int k = 0; k < 1'000'000; ++k) contacts.push_back(record(random_unit(rng), 1.0));
+  for (int k = 0; k < 1'000'000; ++k) contacts.push_back(make_contact(random_unit(rng), 1.0));
   const Eigen::Matrix3d a = fabric_anisotropy(fabric_tensor(contacts));
   EXPECT_NEAR(fabric_tensor(contacts).trace(), 1.0, 1e-12);
   EXPECT_LT(a.cwiseAbs().maxCoeff(), 0.01);  // s.d. of A_zz is 2.24 / sqrt(N) = 0.0022
@@ -80,7 +63,7 @@ TEST(Fabric, IsotropicNormalsGiveNoAnisotropy) {  // T4
 TEST(Fabric, LegendreDensityGivesBackItsCoefficient) {  // T5
   for (double b : {-1.0, 0.5, 2.0}) {
     std::vector<ContactRecord> contacts;
-    for (const auto& n : legendre_normals(b, 1'000'000, 5)) contacts.push_back(record(n, 1.0));
+    for (const auto& n : legendre_normals(b, 1'000'000, 5)) contacts.push_back(make_contact(n, 1.0));
     const Eigen::Matrix3d a = fabric_anisotropy(fabric_tensor(contacts));
     const Eigen::Matrix3d expected = b * Eigen::Vector3d(-0.5, -0.5, 1.0).asDiagonal().toDenseMatrix();
     EXPECT_LT((a - expected).cwiseAbs().maxCoeff(), 0.015) << "b = " << b << "\n" << a;
@@ -94,8 +77,8 @@ TEST(Fabric, RotatingTheNormalsRotatesTheTensor) {  // T6
   const Eigen::Matrix3d r =
       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
   for (const auto& n : legendre_normals(0.8, 20000, 6)) {
-    contacts.push_back(record(n, 1.0));
-    rotated.push_back(record(r * n, 1.0));
+    contacts.push_back(make_contact(n, 1.0));
+    rotated.push_back(make_contact(r * n, 1.0));
   }
   const Eigen::Matrix3d a = fabric_anisotropy(fabric_tensor(contacts));
   const Eigen::Matrix3d b = fabric_anisotropy(fabric_tensor(rotated));
@@ -108,7 +91,7 @@ TEST(NormalForce, SyntheticDirectionalForcesGiveBackLambdaAndF) {  // T7
   f0 << -0.2, 0.05, 0.0, 0.05, -0.1, 0.02, 0.0, 0.02, 0.3;  // traceless, not coaxial with A
   std::vector<ContactRecord> contacts;
   for (const auto& n : legendre_normals(0.5, 1'000'000, 7))
-    contacts.push_back(record(n, lambda0 * (1.0 + n.dot(f0 * n))));
+    contacts.push_back(make_contact(n, lambda0 * (1.0 + n.dot(f0 * n))));
   const Eigen::Matrix3d a = fabric_anisotropy(fabric_tensor(contacts));
   const NormalForceStatistics s = normal_force_statistics(contacts, a, kUnitScale);
   EXPECT_NEAR(s.lambda / lambda0, 1.0, 5e-3);
@@ -125,7 +108,7 @@ TEST(TangentialForce, OuadfelRothenburgFieldGivesAFifth) {  // T8
   for (int k = 0; k < 1'000'000; ++k) {
     const Eigen::Vector3d n = random_unit(rng);
     const Eigen::Vector3d ft = lambda * (at * n - n.dot(at * n) * n);
-    contacts.push_back(record(n, lambda, ft));
+    contacts.push_back(make_contact(n, lambda, ft));
   }
   const NormalForceStatistics s =
       normal_force_statistics(contacts, fabric_anisotropy(fabric_tensor(contacts)), kUnitScale);
@@ -140,11 +123,11 @@ TEST(Statistics, UndefinedInputIsAnErrorNotANan) {
   const std::vector<ContactRecord> none;
   EXPECT_THROW(fabric_tensor(none), StatisticsError);
   EXPECT_THROW(contact_stress(none, 0.0), StatisticsError);
-  std::vector<ContactRecord> zero_force = {record(Eigen::Vector3d::UnitZ(), 0.0)};
+  std::vector<ContactRecord> zero_force = {make_contact(Eigen::Vector3d::UnitZ(), 0.0)};
   EXPECT_THROW(normal_force_statistics(zero_force, Eigen::Matrix3d::Zero(), kUnitScale),
                StatisticsError);
   // Wall contacts are not part of the body-body statistics.
-  ContactRecord wall = record(Eigen::Vector3d::UnitX(), 1.0);
+  ContactRecord wall = make_contact(Eigen::Vector3d::UnitX(), 1.0);
   wall.wall = 2;
   const std::vector<ContactRecord> only_wall = {wall};
   EXPECT_THROW(fabric_tensor(only_wall), StatisticsError);
