@@ -133,10 +133,10 @@ int triaxial_command(const std::string& config_path, const std::string& specimen
   }
   dem::Simulation sim(std::move(state), config.contact, config.engine);
   std::printf("triaxial compression: sigma_3 %.4g kPa, strain rate %.3g /s, %d bodies, time step "
-              "%.3g s (critical %.3g s), density scaling %.3g, %d threads\n",
+              "%.3g s (critical %.3g s), density scaling %.3g, %d threads\n  scene: %s\n",
               sigma3 / 1e3, config.triaxial.strain_rate, sim.particles().num_bodies(),
               sim.time_step(), sim.critical_time_step(), config.engine.density_scaling,
-              omp_get_max_threads());
+              omp_get_max_threads(), sim.features().describe().c_str());
   dem::RunFile file = dem::RunFile::create(out_path, metadata("triaxial", config),
                                            dem::triaxial_series_names());
   file.write_note("specimen", specimen_path);

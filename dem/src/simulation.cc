@@ -30,6 +30,17 @@ inline Eigen::Vector3d locally_damped(const Eigen::Vector3d& f, const Eigen::Vec
 
 }  // namespace
 
+std::string SceneFeatures::describe() const {
+  std::string s = clumps ? "clumps" : "spheres";
+  if (friction) s += ", grain friction";
+  if (wall_friction) s += ", wall friction";
+  if (gravity) s += ", gravity";
+  if (local_damping) s += ", local damping";
+  if (viscous_damping) s += ", contact damping";
+  if (!rotation()) s += ", no rotation";
+  return s;
+}
+
 std::string SimulationOptions::validate() const {
   std::ostringstream error;
   if (!(time_step >= 0.0 && std::isfinite(time_step)))

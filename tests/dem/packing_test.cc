@@ -225,6 +225,7 @@ TEST(Scene, DeclaresOnlyTheFeaturesItUses) {
   EXPECT_TRUE(clumps.features().clumps);
   EXPECT_TRUE(clumps.features().friction);
   EXPECT_TRUE(clumps.features().local_damping);
+  EXPECT_EQ(spheres.features().describe(), "spheres, local damping, no rotation");
 }
 
 }  // namespace
