@@ -74,7 +74,7 @@ TEST(Preparation, LowerFrictionIsDenserAndTheSearchHitsATarget) {
   EXPECT_GT(report.compaction_friction, 0.0);
   EXPECT_LT(report.compaction_friction, 1.0);
   EXPECT_TRUE(report.compaction.converged);
-  // A target looser than frictionless-dense but outside [0, 1] friction is refused clearly.
+  // A target denser than frictionless compaction can reach is refused with the reachable value.
   config.preparation.target_void_ratio = 0.2;
   try {
     prepare_specimen(config, nullptr);
