@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libceres-dev libdeal.ii-dev
   libhdf5-dev hdf5-tools
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev libtomlplusplus-dev
+  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   python3 python3-h5py python3-matplotlib python3-numpy
 )
 

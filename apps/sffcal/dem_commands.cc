@@ -13,6 +13,7 @@
 #include "dem/specimen.h"
 #include "dem/triaxial.h"
 #include "dem/vtk_writer.h"
+#include "csv_table.h"
 #include "progress.h"
 
 namespace sffcal {
@@ -48,7 +49,10 @@ dem::TriaxialSummary shear(dem::Simulation& sim, const dem::RunConfig& config, d
   line.finish();
   file.write_note("summary", summary.describe());
   file.flush();
-  std::printf("%s\nrun file: %s\n", summary.describe().c_str(), file.path().c_str());
+  const std::string csv = file.path() + ".series.csv";
+  write_series_csv(file, csv);
+  std::printf("%s\nrun file: %s (series also in %s)\n", summary.describe().c_str(),
+              file.path().c_str(), csv.c_str());
   return summary;
 }
 

@@ -6,6 +6,12 @@
 
 #include "dem_commands.h"
 #include "sff_command.h"
+#ifdef SFFCAL_HAVE_FE_CHECK
+#include "fe_check_command.h"
+#endif
+#ifdef SFFCAL_HAVE_CALIBRATE
+#include "calibrate_command.h"
+#endif
 
 int main(int argc, char** argv) {
   CLI::App app{"sffcal " SFFCAL_VERSION
@@ -42,10 +48,98 @@ int main(int argc, char** argv) {
   info->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
 
   std::vector<std::string> run_paths;
-  CLI::App* sff = app.add_subcommand("sff", "Stress-force-fabric analysis of every snapshot of "
-                                            "run files (writes /analysis/sff and a CSV)");
+  CLI::App* sff = app.add_subcommand(
+      "sff", "Stress-force-fabric analysis of every snapshot of run files (writes /analysis/sff, "
+             "/analysis/sff_checks, /analysis/sff_rose and CSV copies; plot with "
+             "scripts/plot_sff.py)");
+  sffcal::SffCommandOptions sff_options;
   sff->add_option("runs", run_paths, "run files")->required()->check(CLI::ExistingFile);
-  sff->add_option("-o,--output", out_path, "folder for the CSV tables (default: beside each run)");
+  sff->add_option("-o,--output", sff_options.csv_folder,
+                  "folder for the CSV tables (default: beside each run)");
+  sff->add_option("--resamples", sff_options.resamples,
+                  "bootstrap resamples per snapshot, 0 to skip")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  sff->add_option("--seed", sff_options.seed, "bootstrap seed")->capture_default_str();
+
+#ifdef SFFCAL_HAVE_FE_CHECK
+  sffcal::FeCheckOptions fe_check_options;
+  CLI::App* fe_check = app.add_subcommand(
+      "fe-check", "Element-level drained triaxial checks of the ACST model: material-point "
+                  "driver, one Q1 hexahedron and a 2x2x4 mesh, against each other and against DEM "
+                  "runs (docs/fe.md; plot with scripts/plot_fe_check.py)");
+  fe_check->add_option("--parameters", fe_check_options.parameters_path,
+                       "ACST parameter file (calibration JSON)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  fe_check->add_option("--dem", fe_check_options.dem_runs,
+                       "DEM run files to compare with (sigma_3, e_0 from /series, initial fabric "
+                       "from /analysis/sff)")
+      ->check(CLI::ExistingFile);
+  fe_check->add_option("--pressures", fe_check_options.pressures,
+                       "confining pressures of the plain cases [Pa], comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  fe_check->add_option("--void-ratio", fe_check_options.void_ratio,
+                       "initial void ratio of the plain cases")
+      ->capture_default_str();
+  fe_check->add_option("--max-strain", fe_check_options.max_strain, "final axial strain")
+      ->capture_default_str();
+  fe_check->add_option("--steps", fe_check_options.steps, "equal axial strain increments")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  fe_check->add_option("-o,--output", fe_check_options.output_folder, "output folder")
+      ->capture_default_str();
+  fe_check->add_option("--model-tol", fe_check_options.integration_tolerance,
+                       "substepping tolerance of the model (driver and FE alike)")
+      ->capture_default_str();
+  fe_check->add_option("--a-cs", fe_check_options.a_cs,
+                       "DEM fabric normalisation ||A|| at critical state (F = A_DEM/a_cs); "
+                       "default: the parameter file's a_cs, else 0.827");
+  fe_check->add_option("--dem-eta-tol", fe_check_options.dem_eta_tolerance,
+                       "pass tolerance of the RMS q/p error against DEM")
+      ->capture_default_str();
+  fe_check->add_option("--dem-ev-tol", fe_check_options.dem_volumetric_tolerance,
+                       "pass tolerance of the RMS volumetric strain error against DEM")
+      ->capture_default_str();
+  bool fe_check_no_mesh = false;
+  fe_check->add_flag("--no-mesh", fe_check_no_mesh, "skip the 2x2x4 mesh (the slow run)");
+  fe_check->add_flag("-v,--verbose", fe_check_options.verbose, "print the Newton logs");
+#endif
+
+#ifdef SFFCAL_HAVE_CALIBRATE
+  std::vector<std::string> calibrate_runs;
+  sffcal::CalibrateCommandOptions calibrate_options;
+  CLI::App* calibrate = app.add_subcommand(
+      "calibrate", "Fit the ACST model to DEM run files: critical state line, elasticity, fabric "
+                   "evolution, hardening/dilatancy, then all tests jointly (Ceres); also the SFF "
+                   "strength relation (docs/calibration.md; plot with scripts/plot_calibration.py)");
+  calibrate->add_option("runs", calibrate_runs, "run files with an /analysis/sff table")
+      ->required()
+      ->check(CLI::ExistingFile);
+  calibrate->add_option("-o,--output", calibrate_options.output_folder,
+                        "folder for parameters.json, the curves and summary.md")
+      ->required();
+  calibrate->add_option("--stages", calibrate_options.stages,
+                        "all | csl | elastic | fabric | plastic | joint")
+      ->check(CLI::IsMember({"all", "csl", "elastic", "fabric", "plastic", "joint"}))
+      ->capture_default_str();
+  calibrate->add_option("--starts", calibrate_options.starts,
+                        "starts of the plastic and joint stages (the first from the staged "
+                        "values, the others seeded)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  calibrate->add_option("--seed", calibrate_options.seed, "seed of the extra starts")
+      ->capture_default_str();
+  calibrate->add_option("--loss", calibrate_options.loss, "robust loss: none | huber | cauchy")
+      ->check(CLI::IsMember({"none", "huber", "cauchy"}))
+      ->capture_default_str();
+  calibrate->add_option("--points", calibrate_options.max_points,
+                        "series rows per test used in the fit")
+      ->check(CLI::Range(3, 100000))
+      ->capture_default_str();
+  calibrate->add_flag("-v,--verbose", calibrate_options.verbose, "print the Ceres iterations");
+#endif
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -60,7 +154,20 @@ int main(int argc, char** argv) {
     if (dem->parsed()) return sffcal::dem_command(config_path, out_path);
     if (vtk->parsed()) return sffcal::vtk_command(run_path, out_path);
     if (info->parsed()) return sffcal::info_command(run_path);
-    if (sff->parsed()) return sffcal::sff_command(run_paths, out_path);
+    if (sff->parsed()) return sffcal::sff_command(run_paths, sff_options);
+#ifdef SFFCAL_HAVE_CALIBRATE
+    if (calibrate->parsed()) {
+      std::string command_line;
+      for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
+      return sffcal::calibrate_command(calibrate_runs, calibrate_options, command_line);
+    }
+#endif
+#ifdef SFFCAL_HAVE_FE_CHECK
+    if (fe_check->parsed()) {
+      fe_check_options.mesh = !fe_check_no_mesh;
+      return sffcal::fe_check_command(fe_check_options);
+    }
+#endif
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sffcal: error: %s\n", e.what());
     return 1;

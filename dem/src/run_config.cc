@@ -112,7 +112,8 @@ void check(bool ok, const std::string& message) {
 
 }  // namespace
 
-RunConfig parse_run_config(const std::string& toml_text, const std::string& source) {
+RunConfig parse_run_config(const std::string& toml_text, const std::string& source,
+                           UnknownKeys unknown) {
   toml::table table;
   try {
     table = toml::parse(toml_text, source);
@@ -178,7 +179,10 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
   c.triaxial.confining_stress = 0.0;
   auto apply = [&](const std::string& key, const toml::node& value) {
     const auto it = setters.find(key);
-    if (it == setters.end()) throw std::invalid_argument(where + "unknown key '" + key + "'");
+    if (it == setters.end()) {
+      if (unknown == UnknownKeys::kIgnore) return;
+      throw std::invalid_argument(where + "unknown key '" + key + "'");
+    }
     try {
       it->second(value, key);
     } catch (const std::invalid_argument& e) {

@@ -422,6 +422,27 @@ void RunFile::write_table(const std::string& name, const std::vector<std::string
   flush();
 }
 
+std::vector<std::pair<std::string, std::vector<double>>> RunFile::read_table(
+    const std::string& name) const {
+  return impl_->guard("read table /analysis/" + name, [&] {
+    const std::string path = "analysis/" + name;
+    if (!h5::exists(impl_->id(), "analysis") || !h5::exists(impl_->id(), path))
+      throw std::runtime_error("no such table (run `sffcal sff` on the file first?)");
+    h5::Handle group = h5::open_group(impl_->id(), path);
+    const std::string joined = h5::read_string_attribute(group.get(), "columns");
+    std::vector<std::pair<std::string, std::vector<double>>> table;
+    std::size_t begin = 0;
+    while (begin <= joined.size() && !joined.empty()) {
+      std::size_t end = joined.find(',', begin);
+      if (end == std::string::npos) end = joined.size();
+      const std::string column = joined.substr(begin, end - begin);
+      table.emplace_back(column, h5::read_dataset<double>(group.get(), column, H5T_NATIVE_DOUBLE));
+      begin = end + 1;
+    }
+    return table;
+  });
+}
+
 void RunFile::flush() {
   if (impl_->writable) H5Fflush(impl_->id(), H5F_SCOPE_GLOBAL);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "force_moments.h"
 #include "sff/tensors.h"
 
 namespace sff {
@@ -26,43 +27,26 @@ Mobilisation mobilisation(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
                           double friction, const ForceScale& scale) {
   if (!(friction > 0.0)) throw StatisticsError("mobilisation: the friction coefficient must be positive");
   if (!(lambda > 0.0)) throw StatisticsError("mobilisation: Lambda must be positive");
-  Mobilisation m;
-  Eigen::Matrix3d weighted = Eigen::Matrix3d::Zero(), plain = Eigen::Matrix3d::Zero();
-  std::size_t n = 0, sliding = 0;
-  for (const ContactRecord& c : contacts) {
-    if (is_wall_contact(c)) continue;
-    ++n;
-    const Eigen::Vector3d ft = tangential_of(c);
-    const double ft_norm = ft.norm();
-    if (ft_norm == 0.0 || c.normal_force <= 0.0) continue;
-    const Eigen::Vector3d normal = normal_of(c), tau = ft / ft_norm;
-    const double xi = std::min(1.0, ft_norm / (friction * c.normal_force));
-    sliding += xi > 0.999;
-    const Eigen::Matrix3d tn = tau * normal.transpose();
-    weighted.noalias() += (xi * c.normal_force * scale.factor(c)) * tn;
-    const double w = 1.0 + normal.dot(fabric_a * normal);
-    if (!(w > 0.1)) throw StatisticsError("mobilisation: the fabric anisotropy is too strong for second-order weights");
-    plain.noalias() += (xi / w) * tn;
-  }
-  if (n == 0) throw StatisticsError("mobilisation: no body-body contacts");
-  m.weighted = sym(weighted) / (lambda * static_cast<double>(n));
-  m.tensor = 5.0 * sym(plain) / static_cast<double>(n);
-  m.sliding_fraction = static_cast<double>(sliding) / static_cast<double>(n);
-  return m;
+  return mobilisation(internal::accumulate_force_moments(contacts, fabric_a, scale, friction), lambda);
+}
+
+Mobilisation mobilisation(const internal::ForceMoments& m, double lambda) {
+  Mobilisation result;
+  result.weighted = sym(m.weighted_mobilisation) / (lambda * m.count);
+  result.tensor = 5.0 * sym(m.mobilisation) / m.count;
+  result.sliding_fraction = m.sliding / m.count;
+  return result;
 }
 
 double exact_decoupled_eta(ContactSpan contacts, double friction, double lambda,
                            const Eigen::Matrix3d& weighted_mobilisation, const ForceScale& scale) {
   Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
-  std::size_t n = 0;
-  for (const ContactRecord& c : contacts) {
-    if (is_wall_contact(c)) continue;
+  const double n = for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
     const Eigen::Vector3d normal = normal_of(c);
-    moment.noalias() += (c.normal_force * scale.factor(c)) * normal * normal.transpose();
-    ++n;
-  }
-  if (n == 0) throw StatisticsError("exact_decoupled_eta: no body-body contacts");
-  moment /= static_cast<double>(n);
+    moment.noalias() += (w * c.normal_force * scale.factor(c) * normal) * normal.transpose();
+  });
+  if (!(n > 0.0)) throw StatisticsError("exact_decoupled_eta: no body-body contacts");
+  moment /= n;
   return 3.0 * (triaxial(moment) + friction * lambda * triaxial(weighted_mobilisation)) /
          moment.trace();
 }
@@ -70,11 +54,10 @@ double exact_decoupled_eta(ContactSpan contacts, double friction, double lambda,
 Eigen::Matrix3d branch_remainder(ContactSpan contacts, double volume) {
   if (!(volume > 0.0)) throw StatisticsError("branch_remainder: the volume must be positive");
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
-  for (const ContactRecord& c : contacts) {
-    if (is_wall_contact(c)) continue;
+  for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
     const Eigen::Vector3d n = normal_of(c), l = branch_of(c);
-    sum.noalias() += (l - l.dot(n) * n) * force_of(c).transpose();
-  }
+    sum.noalias() += (w * (l - l.dot(n) * n)) * force_of(c).transpose();
+  });
   return sym(sum) / volume;
 }
 

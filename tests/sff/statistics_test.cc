@@ -19,19 +19,7 @@ const ForceScale kUnitScale{0.5, 1.0};
 using testing::make_contact;
 using testing::random_unit;
 
-// Normals with density E(n) proportional to 1 + b P2(cos theta) about z, by rejection.
-std::vector<Eigen::Vector3d> legendre_normals(double b, int count, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double top = 1.0 + std::max(b, -0.5 * b);
-  std::vector<Eigen::Vector3d> normals;
-  while (static_cast<int>(normals.size()) < count) {
-    const Eigen::Vector3d n = random_unit(rng);
-    const double p2 = 0.5 * (3.0 * n.z() * n.z() - 1.0);
-    if (unit(rng) * top < 1.0 + b * p2) normals.push_back(n);
-  }
-  return normals;
-}
+using testing::legendre_normals;
 
 TEST(ContactStress, SimpleCubicLatticeGivesFOverDSquared) {  // T1
   const double d = 2e-3, f = 3.5;

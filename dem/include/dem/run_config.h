@@ -44,8 +44,13 @@ struct RunConfig {
   std::string text;           ///< the TOML text it was read from (stored in the run file)
 };
 
+/// What to do with a key this version does not know: a user's config is refused, a config stored
+/// in a run file by another version is read for the keys it shares.
+enum class UnknownKeys { kError, kIgnore };
+
 /// Parses TOML text; throws std::invalid_argument naming the offending key.
-RunConfig parse_run_config(const std::string& toml_text, const std::string& source = "config");
+RunConfig parse_run_config(const std::string& toml_text, const std::string& source = "config",
+                           UnknownKeys unknown = UnknownKeys::kError);
 RunConfig load_run_config(const std::string& path);
 
 /// A fully commented TOML file with every key at its default.

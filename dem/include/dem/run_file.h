@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dem/records.h"
@@ -94,6 +95,10 @@ class RunFile {
   /// one value per row), replacing any earlier table of that name.
   void write_table(const std::string& name, const std::vector<std::string>& columns,
                    const std::vector<std::vector<double>>& rows);
+
+  /// Reads a table written by write_table: its columns in their stored order, each with its
+  /// values. Throws std::runtime_error naming the file and /analysis/<name> if it is missing.
+  std::vector<std::pair<std::string, std::vector<double>>> read_table(const std::string& name) const;
 
   /// Pushes everything written so far to disk (a killed run keeps it).
   void flush();

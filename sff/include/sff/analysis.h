@@ -6,9 +6,33 @@
 
 #include <Eigen/Core>
 
+#include "sff/assumption_checks.h"
+#include "sff/bootstrap.h"
 #include "sff/contacts.h"
+#include "sff/directional.h"
 
 namespace sff {
+
+/// The directional tensors of sff-theory.md §3 and §5 from one set of (weighted) contacts.
+struct DirectionalTensors {
+  double lambda = 0.0;
+  Eigen::Matrix3d fabric = Eigen::Matrix3d::Zero();        ///< A
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();        ///< F
+  Eigen::Matrix3d tangential = Eigen::Matrix3d::Zero();    ///< F^t
+  Eigen::Matrix3d weighted_mobilisation = Eigen::Matrix3d::Zero();  ///< T_m
+  Eigen::Matrix3d mobilisation = Eigen::Matrix3d::Zero();  ///< M
+  double sliding_fraction = 0.0;
+};
+DirectionalTensors directional_tensors(ContactSpan contacts, const ForceScale& scale, double friction);
+
+/// Largest principal value of a symmetric tensor, its axis (sign chosen with z >= 0) and the
+/// axis' angle from the loading axis z [deg]: what a non-coaxial state (bedding at alpha) needs.
+struct PrincipalAxis {
+  double major = 0.0;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double tilt_deg = 0.0;
+};
+PrincipalAxis principal_axis(const Eigen::Matrix3d& t);
 
 struct SnapshotInput {
   ContactSpan contacts;        ///< body-body and wall contacts of the snapshot
@@ -17,6 +41,11 @@ struct SnapshotInput {
   int num_bodies = 0;
   double youngs_modulus = 150e6;  ///< [Pa], for the force normalisation
   double friction = 0.5773502691896257;  ///< grain friction mu, for the mobilisation
+  /// Principal stresses the walls measure (x, y, z) [Pa]; all zero when unknown.
+  Eigen::Vector3d wall_stress = Eigen::Vector3d::Zero();
+  /// Body centroids indexed by body id, for the particle form with the wall contacts (empty:
+  /// compare the walls with the contact form instead).
+  std::vector<Eigen::Vector3d> centroids;
 };
 
 struct SnapshotAnalysis {
@@ -33,6 +62,14 @@ struct SnapshotAnalysis {
   double sff_error = 0.0;      ///< |sigma_SFF - sigma| / |sigma| (Frobenius)
   double branch_ratio = 0.0;   ///< |R_b| / |sigma|
   double sliding_fraction = 0.0;
+  double a_c_invariant = 0.0, a_n_invariant = 0.0, a_t_invariant = 0.0, m_invariant = 0.0;  ///< sign(t) sqrt(3/2 T:T)
+  double wall_eta = 0.0;            ///< q/p of the wall stress (0 when unknown)
+  /// max_i |sigma_ii - sigma_ii(walls)| / p(walls), sigma the particle form with the wall
+  /// contacts (equal to the wall stress in equilibrium); the contact form without centroids.
+  double wall_stress_error = 0.0;
+  double wall_layer_ratio = 0.0;    ///< |wall-contact terms| / |sigma|: what the contact form misses
+  PrincipalAxis stress_axis, fabric_axis, normal_axis, tangential_axis, mobilisation_axis;
+  Eigen::Matrix3d weighted_mobilisation = Eigen::Matrix3d::Zero();  ///< T_m
   Eigen::Matrix3d stress = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d fabric = Eigen::Matrix3d::Zero();      ///< A
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();      ///< F
@@ -42,6 +79,23 @@ struct SnapshotAnalysis {
 
 /// Throws StatisticsError where a statistic is undefined (no contacts, no force).
 SnapshotAnalysis analyse_snapshot(const SnapshotInput& input);
+
+/// The statistical checks of sff-theory.md §6 for one snapshot, and the strong/weak split.
+struct SnapshotChecks {
+  BranchCheck branch;
+  TruncationCheck truncation;
+  IndependenceCheck independence;
+  CoaxialityCheck coaxiality;
+  StrongWeakSplit strong_weak;
+  BootstrapIntervals bootstrap;
+};
+struct CheckOptions {
+  int bins = 18;            ///< cos-theta bands for the truncation check
+  int resamples = 200;      ///< bootstrap resamples (0: skip the bootstrap)
+  std::uint64_t seed = 1;   ///< bootstrap seed
+};
+SnapshotChecks check_snapshot(const SnapshotInput& input, const SnapshotAnalysis& analysis,
+                              const CheckOptions& options = {});
 
 /// Z_m: iteratively drops bodies with fewer than two body-body contacts, then 2 N_c / N_p.
 double mechanical_coordination(ContactSpan contacts, int num_bodies);
@@ -53,5 +107,9 @@ double clump_volume(double radius, double centre_distance);
 /// The scalar columns of the per-snapshot table, and one row of it.
 const std::vector<std::string>& analysis_columns();
 std::vector<double> analysis_row(const SnapshotAnalysis& a);
+
+/// The columns of the per-snapshot table of checks, and one row of it.
+const std::vector<std::string>& check_columns();
+std::vector<double> check_row(const SnapshotChecks& c);
 
 }  // namespace sff

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Core>
@@ -13,7 +14,9 @@ namespace sff {
 
 using dem::ContactRecord;
 
-/// Pointer and count of contact records (std::span before C++20).
+/// Pointer and count of contact records (std::span before C++20), with optional per-contact
+/// weights: every statistic is a weighted mean, so a bootstrap resample (integer multiplicities)
+/// or a sub-network (0/1, e.g. the strong contacts) is a weighted view of the same records.
 class ContactSpan {
  public:
   ContactSpan() = default;
@@ -23,10 +26,21 @@ class ContactSpan {
   const ContactRecord* end() const { return data_ + size_; }
   std::size_t size() const { return size_; }
   const ContactRecord& operator[](std::size_t k) const { return data_[k]; }
+  double weight(std::size_t k) const { return weights_ ? weights_[k] : 1.0; }
+
+  /// The same records weighted by w (one non-negative weight per record, kept alive by the
+  /// caller).
+  ContactSpan weighted(const std::vector<double>& w) const {
+    if (w.size() != size_) throw std::invalid_argument("ContactSpan::weighted: one weight per contact");
+    ContactSpan view = *this;
+    view.weights_ = w.data();
+    return view;
+  }
 
  private:
   const ContactRecord* data_ = nullptr;
   std::size_t size_ = 0;
+  const double* weights_ = nullptr;
 };
 
 inline Eigen::Vector3d normal_of(const ContactRecord& c) {
@@ -43,5 +57,20 @@ inline Eigen::Vector3d force_of(const ContactRecord& c) {
   return c.normal_force * normal_of(c) + tangential_of(c);
 }
 inline bool is_wall_contact(const ContactRecord& c) { return c.wall >= 0; }
+
+/// Calls visit(contact, weight) for every body-body contact of non-zero weight and returns the
+/// total weight (the weighted N_c). Wall contacts never enter the directional statistics.
+template <class Visit>
+double for_each_body_contact(ContactSpan contacts, Visit&& visit) {
+  double total = 0.0;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const ContactRecord& c = contacts[k];
+    const double w = contacts.weight(k);
+    if (is_wall_contact(c) || w == 0.0) continue;
+    visit(c, w);
+    total += w;
+  }
+  return total;
+}
 
 }  // namespace sff

@@ -35,6 +35,8 @@ struct Mobilisation {
 };
 Mobilisation mobilisation(ContactSpan contacts, const Eigen::Matrix3d& fabric_a, double lambda,
                           double friction, const ForceScale& scale);
+/// The same from moments already accumulated (internal use: one pass for all tensors).
+Mobilisation mobilisation(const internal::ForceMoments& moments, double lambda);
 
 /// Decoupled stress ratio: eta ~ (2/5)(a_c + a_n) + (3/5) mu m.
 inline double decoupled_eta(double a_c, double a_n, double friction, double m) {

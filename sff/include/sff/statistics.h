@@ -5,15 +5,27 @@
 
 #include <Eigen/Core>
 #include <stdexcept>
+#include <vector>
 
 #include "sff/contacts.h"
 
 namespace sff {
 
-/// Contact form of the Love-Weber stress over body-body contacts, (1/V) sum sym(l (x) f) [Pa].
+/// Contact form of the Love-Weber stress over body-body contacts, (1/V) sum sym(l (x) f) [Pa]
+/// (weighted: the stress a sub-network carries).
 Eigen::Matrix3d contact_stress(ContactSpan contacts, double volume);
 
-/// Number of body-body contacts.
+/// Particle form of the Love-Weber stress over all contacts, walls included:
+/// -(1/V) sum_p sum_{c in p} sym((x^c - x^p) (x) f^{c->p}) [Pa]. centroids[id] is the centroid of
+/// body id. Equals contact_stress + wall_contact_stress identically (sff-theory.md T2).
+Eigen::Matrix3d particle_stress(ContactSpan contacts, const std::vector<Eigen::Vector3d>& centroids,
+                                double volume);
+
+/// The wall contacts' share of the particle form: -(1/V) sum sym((x^c - x^p) (x) f) over them.
+Eigen::Matrix3d wall_contact_stress(ContactSpan contacts, const std::vector<Eigen::Vector3d>& centroids,
+                                    double volume);
+
+/// Number of body-body contacts (unweighted).
 std::size_t count_body_contacts(ContactSpan contacts);
 
 /// Fabric tensor phi = (1/N_c) sum n (x) n (trace 1).
@@ -39,9 +51,17 @@ struct NormalForceStatistics {
 NormalForceStatistics normal_force_statistics(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
                                               const ForceScale& scale);
 
+namespace internal {
+struct ForceMoments;
+}
+/// The same from moments already accumulated (internal use: one pass for all tensors).
+NormalForceStatistics normal_force_statistics(const internal::ForceMoments& moments);
+
 /// Tangential-force tensor F^t = (1 / (Lambda N_c)) sum sym(f_hat_t (x) n) (traceless).
 Eigen::Matrix3d tangential_force_tensor(ContactSpan contacts, double lambda,
                                         const ForceScale& scale);
+/// The same from moments already accumulated (internal use).
+Eigen::Matrix3d tangential_force_tensor(const internal::ForceMoments& moments, double lambda);
 
 /// Thrown for statistics that are undefined (no contacts, Lambda = 0, a non-positive weight).
 struct StatisticsError : std::runtime_error {

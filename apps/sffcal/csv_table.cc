@@ -1,0 +1,34 @@
+#include "csv_table.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "dem/run_file.h"
+
+namespace sffcal {
+
+void write_csv(const std::string& path, const std::vector<std::string>& columns,
+               const std::vector<std::vector<double>>& rows) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out.precision(10);
+  for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
+  out << "\n";
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << row[c];
+    out << "\n";
+  }
+  if (!out) throw std::runtime_error("error while writing " + path);
+}
+
+void write_series_csv(const dem::RunFile& file, const std::string& path) {
+  const std::vector<std::string>& names = file.series_names();
+  std::vector<std::vector<double>> columns;
+  for (const std::string& name : names) columns.push_back(file.series(name));
+  std::vector<std::vector<double>> rows(file.series_length(), std::vector<double>(names.size()));
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    for (std::size_t r = 0; r < rows.size() && r < columns[c].size(); ++r) rows[r][c] = columns[c][r];
+  write_csv(path, names, rows);
+}
+
+}  // namespace sffcal

@@ -1,0 +1,67 @@
+#!/usr/bin/python3
+"""Writes the TOML configs of the reference test matrix (issue 7) into a folder.
+
+usage: make_configs.py OUT_FOLDER [--bodies N] [--seed S] [--only NAME_SUBSTRING]
+
+Isotropic specimens: three densities (compaction friction 0.15 dense, 0.4 medium, 1.0 loose)
+x p'0 = 100, 200, 300 kPa. Anisotropic specimens: gravity deposition, dense and loose, loading
+angle 0, 30, 45, 60, 90 deg, at 100 kPa. Every config starts from examples/quick_triaxial.toml
+and changes only the keys below; the seed is the same for all (the density, pressure and angle
+are what differ).
+"""
+import argparse
+import os
+import re
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TEMPLATE = os.path.join(HERE, "..", "..", "examples", "quick_triaxial.toml")
+DENSITIES = {"dense": 0.15, "medium": 0.4, "loose": 1.0}  # compaction friction
+
+
+def matrix():
+    for density, friction in DENSITIES.items():
+        for kpa in (100, 200, 300):
+            yield f"iso_{density}_{kpa}kPa", {"method": '"compaction"', "compaction_friction": friction,
+                                               "pressure": kpa * 1e3}
+    for density in ("dense", "loose"):
+        for angle in (0, 30, 45, 60, 90):
+            yield f"dep_{density}_a{angle:02d}", {"method": '"deposition"', "loading_angle_deg": float(angle),
+                                                 "compaction_friction": DENSITIES[density], "pressure": 1e5}
+
+
+def set_key(text, key, value):
+    pattern = re.compile(rf"^({re.escape(key)}\s*=\s*)([^#\n]*?)(\s*#.*)?$", re.M)
+    if not pattern.search(text):
+        raise SystemExit(f"template has no key {key}")
+    return pattern.sub(lambda m: f"{m.group(1)}{value}  # set by make_configs.py", text, count=1)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("folder")
+    parser.add_argument("--bodies", type=int, default=500)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--only", default="")
+    args = parser.parse_args()
+    os.makedirs(args.folder, exist_ok=True)
+    template = open(TEMPLATE).read()
+    for name, keys in matrix():
+        if args.only not in name:
+            continue
+        text = template
+        text = set_key(text, "seed", args.seed)
+        text = set_key(text, "threads", 1)  # one specimen per core: run several at once
+        text = set_key(text, "bodies", args.bodies)
+        text = set_key(text, "strain_rate", 100.0)
+        text = set_key(text, "max_axial_strain", 0.30)
+        text = set_key(text, "snapshot_strain_interval", 0.025)
+        for key, value in keys.items():
+            text = set_key(text, key, value)
+        text = f"# Reference matrix specimen {name} (bench/matrix/make_configs.py)\n" + text
+        with open(os.path.join(args.folder, f"{name}.toml"), "w") as f:
+            f.write(text)
+        print(name)
+
+
+if __name__ == "__main__":
+    main()
