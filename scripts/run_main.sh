@@ -14,5 +14,8 @@ mkdir -p out/main
 ./build/sffcal vtk out/main/triaxial.h5 -o out/main/vtk
 ./build/sffcal sff out/main/triaxial.h5 -o out/main
 /usr/bin/python3 bench/reference/plot_triaxial.py out/main/triaxial.h5 out/main/triaxial.png
+/usr/bin/python3 scripts/plot_sff.py out/main/triaxial.h5 -o out/main
 echo "main job done: out/main/triaxial.h5 (HDF5, see docs/run-file.md), out/main/triaxial.png,"
-echo "  out/main/triaxial.h5.sff.csv (SFF table, docs/sff.md), out/main/vtk/spheres.pvd (ParaView)"
+echo "  out/main/triaxial.h5.{series,sff,sff_checks,sff_rose}.csv (tables, docs/sff.md),"
+echo "  out/main/triaxial_eta.png, triaxial_rose.png, anisotropy.png (SFF plots),"
+echo "  out/main/vtk/spheres.pvd (ParaView)"
