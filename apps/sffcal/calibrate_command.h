@@ -1,0 +1,26 @@
+// The calibrate subcommand: staged and joint Ceres fits of the ACST model to DEM run files
+// (docs/calibration.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sffcal {
+
+struct CalibrateCommandOptions {
+  std::string output_folder;     ///< parameters.json, <test>_curves.csv, summary.md, ...
+  std::string stages = "all";    ///< all | csl | elastic | fabric | plastic | joint
+  int starts = 3;                ///< starts of the plastic and joint stages
+  std::uint64_t seed = 1;        ///< seed of the extra starts
+  std::string loss = "none";     ///< none | huber | cauchy
+  int max_points = 60;           ///< series rows per test in the fit
+  bool verbose = false;          ///< Ceres progress
+};
+
+/// Reads the run files (each needs /analysis/sff), calibrates, writes the outputs and prints the
+/// summary. Returns the exit status (errors are printed, never thrown).
+int calibrate_command(const std::vector<std::string>& run_paths,
+                      const CalibrateCommandOptions& options, const std::string& command_line);
+
+}  // namespace sffcal

@@ -1,0 +1,384 @@
+// sffcal fe-check: see fe_check_command.h and docs/fe.md. deal.II stays out of this translation
+// unit: the FE runs go through fe_model/acst_check.h.
+#include "fe_check_command.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "calibration/acst_model.h"
+#include "fe_model/acst_check.h"
+
+namespace sffcal {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kVerificationTolerance = 1e-8;
+const double kSqrtTwoThirds = std::sqrt(2.0 / 3.0);
+
+// A read-only HDF5 file with the two reads fe-check needs.
+class H5Reader {
+ public:
+  explicit H5Reader(const std::string& path) : path_(path) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // missing objects are checked, not printed
+    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (file_ < 0)
+      throw std::runtime_error("cannot open DEM run file '" + path +
+                               "' (not HDF5, or still open for writing by a running simulation)");
+  }
+  ~H5Reader() { H5Fclose(file_); }
+  H5Reader(const H5Reader&) = delete;
+  H5Reader& operator=(const H5Reader&) = delete;
+
+  // True if every component of an absolute path such as /analysis/sff/a_c exists.
+  bool has(const std::string& path) const {
+    std::string partial;
+    std::istringstream parts(path);
+    std::string part;
+    while (std::getline(parts, part, '/')) {
+      if (part.empty()) continue;
+      partial += "/" + part;
+      if (H5Lexists(file_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
+    }
+    return !partial.empty();
+  }
+
+  // A 1-D dataset as doubles.
+  std::vector<double> read(const std::string& path) const {
+    if (!has(path)) throw std::runtime_error(path_ + ": no dataset " + path);
+    const hid_t dataset = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
+    const hid_t space = H5Dget_space(dataset);
+    hsize_t size = 0;
+    const bool one_d = H5Sget_simple_extent_ndims(space) == 1 &&
+                       H5Sget_simple_extent_dims(space, &size, nullptr) == 1;
+    std::vector<double> values(one_d ? size : 0);
+    const herr_t status = one_d && size > 0 ? H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                                                      H5P_DEFAULT, values.data())
+                                            : 0;
+    H5Sclose(space);
+    H5Dclose(dataset);
+    if (!one_d || status < 0) throw std::runtime_error(path_ + ": cannot read " + path);
+    return values;
+  }
+
+ private:
+  std::string path_;
+  hid_t file_ = -1;
+};
+
+struct DemRun {
+  std::string path;
+  std::string name;
+  double confining_pressure = 0.0;  // /series/sigma_3 of the first row
+  double void_ratio = 0.0;          // /series/void_ratio of the first row
+  std::optional<double> initial_a_c;  // /analysis/sff/a_c at the smallest axial strain
+  fe_model::Curve curve;            // the series
+  fe_model::Curve fabric;           // the /analysis/sff rows (with the fabric invariant)
+};
+
+DemRun read_dem_run(const std::string& path, double a_cs) {
+  DemRun run;
+  run.path = path;
+  run.name = fs::path(path).stem().string();
+  const H5Reader file(path);
+  const std::vector<double> axial = file.read("/series/axial_strain");
+  const std::vector<double> volumetric = file.read("/series/volumetric_strain");
+  const std::vector<double> p = file.read("/series/p");
+  const std::vector<double> q = file.read("/series/q");
+  const std::vector<double> e = file.read("/series/void_ratio");
+  const std::vector<double> sigma_3 = file.read("/series/sigma_3");
+  const std::size_t n = axial.size();
+  if (n == 0 || volumetric.size() != n || p.size() != n || q.size() != n || e.size() != n ||
+      sigma_3.size() != n)
+    throw std::runtime_error(path + ": /series is empty or its datasets differ in length");
+  run.confining_pressure = sigma_3.front();
+  run.void_ratio = e.front();
+  run.curve.label = "dem";
+  run.curve.completed = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    fe_model::CurvePoint point;
+    point.axial_strain = axial[i];
+    point.volumetric_strain = volumetric[i];
+    point.p = p[i];
+    point.q = q[i];
+    point.void_ratio = e[i];
+    point.fabric_invariant = std::numeric_limits<double>::quiet_NaN();
+    run.curve.points.push_back(point);
+  }
+  if (file.has("/analysis/sff/a_c") && file.has("/analysis/sff/axial_strain")) {
+    const std::vector<double> sff_axial = file.read("/analysis/sff/axial_strain");
+    const std::vector<double> a_c = file.read("/analysis/sff/a_c");
+    std::vector<double> sff_p, sff_q, sff_e;
+    if (file.has("/analysis/sff/p")) sff_p = file.read("/analysis/sff/p");
+    if (file.has("/analysis/sff/q")) sff_q = file.read("/analysis/sff/q");
+    if (file.has("/analysis/sff/void_ratio")) sff_e = file.read("/analysis/sff/void_ratio");
+    run.fabric.label = "dem_fabric";
+    run.fabric.completed = true;
+    std::size_t first = 0;
+    for (std::size_t i = 0; i < std::min(sff_axial.size(), a_c.size()); ++i) {
+      fe_model::CurvePoint point;
+      point.axial_strain = sff_axial[i];
+      point.p = i < sff_p.size() ? sff_p[i] : std::numeric_limits<double>::quiet_NaN();
+      point.q = i < sff_q.size() ? sff_q[i] : std::numeric_limits<double>::quiet_NaN();
+      point.void_ratio = i < sff_e.size() ? sff_e[i] : std::numeric_limits<double>::quiet_NaN();
+      point.volumetric_strain = std::numeric_limits<double>::quiet_NaN();
+      point.fabric_invariant = kSqrtTwoThirds * a_c[i] / a_cs;  // A_DEM : n_c / a_cs
+      run.fabric.points.push_back(point);
+      if (sff_axial[i] < sff_axial[first]) first = i;
+    }
+    if (!run.fabric.points.empty()) run.initial_a_c = a_c[first];
+  }
+  return run;
+}
+
+struct Case {
+  std::string name;
+  fe_model::AcstSpecimen specimen;
+  const DemRun* dem = nullptr;
+  std::string fabric_source;
+};
+
+struct CheckRow {
+  std::string case_name, check, quantity;
+  double value = 0.0, tolerance = 0.0;
+  bool pass = false;
+  bool verification = true;  // false: FE vs DEM (a calibration-quality measure)
+  std::string note;
+};
+
+std::string pressure_name(double pressure) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "p%gkPa", pressure / 1e3);
+  return buffer;
+}
+
+std::string run_line(const fe_model::Curve& curve, unsigned int steps) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, "%-8s %-9s %4zu/%-4u steps  %5d Newton  %3d cuts  %8.2f s",
+                curve.label.c_str(), curve.completed ? "completed" : "STOPPED",
+                curve.points.empty() ? std::size_t{0} : curve.points.size() - 1, steps,
+                curve.newton_iterations, curve.cuts, curve.wall_seconds);
+  std::string line = buffer;
+  if (!curve.completed) line += "\n           " + curve.message;
+  return line;
+}
+
+void write_pvd(const std::string& path, const std::string& vtu_prefix_name,
+               const fe_model::Curve& curve) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot open " + path + " for writing");
+  out << "<?xml version=\"1.0\"?>\n<!-- timestep = axial strain (compression positive) -->\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  out << std::setprecision(10);
+  for (std::size_t i = 0; i < curve.points.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "_%04zu.vtu", i);
+    out << "  <DataSet timestep=\"" << curve.points[i].axial_strain << "\" file=\""
+        << vtu_prefix_name << name << "\"/>\n";
+  }
+  out << "</Collection>\n</VTKFile>\n";
+}
+
+void add_path_checks(std::vector<CheckRow>& rows, const std::string& case_name,
+                     const std::string& check, const fe_model::Curve& curve,
+                     const fe_model::Curve& reference) {
+  const fe_model::PathError error = fe_model::compare_paths(curve, reference);
+  const bool complete = curve.completed && reference.completed;
+  const bool aligned = error.axial_strain_mismatch <= 1e-12;
+  std::string note;
+  if (!complete) note = "a run stopped early: compared over " + std::to_string(error.points) +
+                        " common points";
+  if (!aligned) note += (note.empty() ? "" : "; ") + std::string("axial strains differ");
+  for (int k = 0; k < 2; ++k) {
+    CheckRow row;
+    row.case_name = case_name;
+    row.check = check;
+    row.quantity = k == 0 ? "q (max rel.)" : "eps_v (max rel.)";
+    row.value = k == 0 ? error.q : error.volumetric_strain;
+    row.tolerance = kVerificationTolerance;
+    row.pass = complete && aligned && std::isfinite(row.value) && row.value <= row.tolerance;
+    row.note = note;
+    rows.push_back(row);
+  }
+}
+
+std::string format_value(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
+}
+
+}  // namespace
+
+int fe_check_command(const FeCheckOptions& options) {
+  if (options.parameters_path.empty()) throw std::invalid_argument("fe-check needs --parameters");
+  if (!(options.max_strain > 0.0) || options.max_strain > 0.6)
+    throw std::invalid_argument("--max-strain must be in (0, 0.6]");
+  if (options.steps == 0) throw std::invalid_argument("--steps must be >= 1");
+  if (!(options.integration_tolerance > 0.0) || options.integration_tolerance > 1e-2)
+    throw std::invalid_argument("--model-tol must be in (0, 1e-2]");
+  for (double p : options.pressures)
+    if (!(p > 0.0)) throw std::invalid_argument("--pressures must be positive [Pa]");
+
+  // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
+  const calibration::Parameters<double> parameters =
+      calibration::read_parameters_json(options.parameters_path);
+  double a_cs = fe_model::kDefaultAcs;
+  std::string a_cs_source = "default (dense_100kPa_2000 critical state, docs/fe.md)";
+  if (options.a_cs > 0.0) {
+    a_cs = options.a_cs;
+    a_cs_source = "--a-cs";
+  } else if (const std::optional<double> from_file =
+                 fe_model::read_fabric_normalisation(options.parameters_path)) {
+    a_cs = *from_file;
+    a_cs_source = "parameter file";
+  }
+
+  std::vector<DemRun> dem_runs;
+  for (const std::string& path : options.dem_runs) dem_runs.push_back(read_dem_run(path, a_cs));
+
+  std::vector<Case> cases;
+  for (double p : options.pressures) {
+    Case c;
+    c.name = pressure_name(p);
+    c.specimen.confining_pressure = p;
+    c.specimen.void_ratio = options.void_ratio;
+    c.fabric_source = "isotropic";
+    cases.push_back(c);
+  }
+  for (const DemRun& run : dem_runs) {
+    Case c;
+    c.name = run.name;
+    c.dem = &run;
+    c.specimen.confining_pressure = run.confining_pressure;
+    c.specimen.void_ratio = run.void_ratio;
+    if (run.initial_a_c) {
+      c.specimen.fabric = fe_model::fabric_from_dem_anisotropy(*run.initial_a_c, a_cs);
+      c.fabric_source = "/analysis/sff a_c = " + format_value(*run.initial_a_c);
+    } else {
+      c.fabric_source = "isotropic (no /analysis/sff: run 'sffcal sff' on the file first)";
+    }
+    cases.push_back(c);
+  }
+
+  const fs::path out_folder(options.output_folder);
+  fs::create_directories(out_folder);
+  fe_model::AcstLoading loading;
+  loading.axial_strain_end = options.max_strain;
+  loading.n_steps = options.steps;
+  loading.integration.tolerance = options.integration_tolerance;
+
+  std::printf("sffcal fe-check: parameters %s, a_cs = %.4g (%s)\n",
+              options.parameters_path.c_str(), a_cs, a_cs_source.c_str());
+  std::printf("drained triaxial compression to axial strain %.3g in %u steps; model integration "
+              "tolerance %.1e; output in %s/\n",
+              options.max_strain, options.steps, loading.integration.tolerance,
+              out_folder.string().c_str());
+
+  std::vector<CheckRow> checks;
+  bool runs_completed = true;
+  for (const Case& c : cases) {
+    const fs::path folder = out_folder / c.name;
+    fs::create_directories(folder);
+    const double f0 = c.specimen.fabric(2, 2) - 0.5 * (c.specimen.fabric(0, 0) +
+                                                        c.specimen.fabric(1, 1));
+    std::printf("\ncase %s: sigma_3 = %.4g kPa, e_0 = %.4g, F_0:n_c = %.4g (%s)\n", c.name.c_str(),
+                c.specimen.confining_pressure / 1e3, c.specimen.void_ratio, kSqrtTwoThirds * f0,
+                c.fabric_source.c_str());
+    std::fflush(stdout);
+
+    const fe_model::Curve driver = fe_model::run_acst_driver_triaxial(parameters, c.specimen, loading);
+    fe_model::write_curve_csv((folder / "driver.csv").string(), driver);
+    std::printf("  %s\n", run_line(driver, options.steps).c_str());
+    std::fflush(stdout);
+
+    fe_model::AcstMeshOptions element_options;
+    element_options.verbose = options.verbose;
+    const fe_model::Curve element =
+        fe_model::run_acst_fe_triaxial(parameters, c.specimen, loading, element_options);
+    fe_model::write_curve_csv((folder / "element.csv").string(), element);
+    std::printf("  %s\n", run_line(element, options.steps).c_str());
+    std::fflush(stdout);
+    runs_completed = runs_completed && driver.completed && element.completed;
+    add_path_checks(checks, c.name, "element vs driver", element, driver);
+
+    if (options.mesh) {
+      fe_model::AcstMeshOptions mesh_options;
+      mesh_options.cells_x = mesh_options.cells_y = 2;
+      mesh_options.cells_z = 4;
+      mesh_options.verbose = options.verbose;
+      fs::create_directories(folder / "vtu");
+      mesh_options.vtu_prefix = (folder / "vtu" / "mesh").string();
+      const fe_model::Curve mesh =
+          fe_model::run_acst_fe_triaxial(parameters, c.specimen, loading, mesh_options);
+      fe_model::write_curve_csv((folder / "mesh.csv").string(), mesh);
+      write_pvd((folder / "mesh.pvd").string(), "vtu/mesh", mesh);
+      std::printf("  %s\n", run_line(mesh, options.steps).c_str());
+      std::fflush(stdout);
+      runs_completed = runs_completed && mesh.completed;
+      add_path_checks(checks, c.name, "mesh vs element", mesh, element);
+    }
+
+    if (c.dem) {
+      fe_model::write_curve_csv((folder / "dem.csv").string(), c.dem->curve);
+      if (!c.dem->fabric.points.empty())
+        fe_model::write_curve_csv((folder / "dem_fabric.csv").string(), c.dem->fabric);
+      const fe_model::DemError error = fe_model::compare_with_dem(element, c.dem->curve);
+      const std::string note = std::to_string(error.points) + " DEM points to eps_a = " +
+                               format_value(element.points.empty()
+                                                ? 0.0
+                                                : element.points.back().axial_strain);
+      CheckRow eta{c.name, "FE vs DEM", "q/p (RMS)", error.eta_rms, options.dem_eta_tolerance,
+                   error.points > 0 && error.eta_rms <= options.dem_eta_tolerance, false, note};
+      CheckRow ev{c.name,
+                  "FE vs DEM",
+                  "eps_v (RMS)",
+                  error.volumetric_strain_rms,
+                  options.dem_volumetric_tolerance,
+                  error.points > 0 && error.volumetric_strain_rms <= options.dem_volumetric_tolerance,
+                  false,
+                  note};
+      checks.push_back(eta);
+      checks.push_back(ev);
+    }
+  }
+
+  // The table, on stdout and as CSV.
+  std::printf("\n%-22s %-18s %-17s %10s %10s  %s\n", "case", "check", "quantity", "value",
+              "tolerance", "result");
+  bool verification_ok = true, dem_ok = true;
+  std::ofstream summary(out_folder / "summary.csv");
+  summary << "case,check,quantity,value,tolerance,result,note\n" << std::setprecision(6);
+  for (const CheckRow& row : checks) {
+    std::printf("%-22s %-18s %-17s %10.3e %10.3e  %s%s%s\n", row.case_name.c_str(),
+                row.check.c_str(), row.quantity.c_str(), row.value, row.tolerance,
+                row.pass ? "pass" : "FAIL", row.note.empty() ? "" : "  ", row.note.c_str());
+    summary << row.case_name << ',' << row.check << ',' << row.quantity << ',' << row.value << ','
+            << row.tolerance << ',' << (row.pass ? "pass" : "fail") << ",\"" << row.note << "\"\n";
+    if (!row.pass) (row.verification ? verification_ok : dem_ok) = false;
+  }
+  if (!dem_runs.empty()) {
+    std::printf("FE vs DEM uses the parameters of %s; tolerances: --dem-eta-tol, --dem-ev-tol.\n",
+                options.parameters_path.c_str());
+  }
+  std::printf("CSV: %s/<case>/{driver,element,mesh,dem}.csv, table: %s/summary.csv; plot with "
+              "scripts/plot_fe_check.py %s\n",
+              out_folder.string().c_str(), out_folder.string().c_str(),
+              out_folder.string().c_str());
+  if (!runs_completed || !verification_ok) return 1;
+  return dem_ok ? 0 : 2;
+}
+
+}  // namespace sffcal

@@ -1,0 +1,161 @@
+// The fabric-based sand model of the anisotropic critical state theory (ACST) family: Dafalias &
+// Manzari (2004, "DM04") with the fabric tensor and dilatancy state parameter of Li & Dafalias
+// (2012), integrated by explicit substepping with error control (Sloan, Abbo & Sheng 2001; a
+// third-order Bogacki-Shampine step by default).
+// Equations, parameters, status codes and every choice of ours: docs/model.md.
+//
+// Conventions: compression positive (stress, strain and their increments); stress in Pa; the
+// shear components of strain tensors are tensor components (eps_xy), not engineering (gamma_xy).
+// Everything that depends on the scalar type is a template on T (double, ceres::Jet<...>): the same
+// code gives the stress (double), derivatives w.r.t. parameters (Jets seeded on parameters) and
+// the consistent tangent (Jets seeded on the strain increment).
+#pragma once
+
+#include <Eigen/Core>
+#include <ceres/jet.h>
+
+#include <string>
+#include <vector>
+
+namespace calibration {
+
+/// p_a, the reference pressure of the model [Pa].
+inline constexpr double kAtmosphericPressure = 101325.0;
+
+template <typename T>
+using Tensor = Eigen::Matrix<T, 3, 3>;  // symmetric, compression positive
+
+/// The 15 parameters of acst-model.md. All are dimensionless (G0 multiplies p_a).
+template <typename T>
+struct Parameters {
+  T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F;
+};
+
+template <typename T>
+struct State {
+  Tensor<T> stress;    // effective stress [Pa], compression positive
+  T void_ratio;
+  Tensor<T> alpha;     // back-stress ratio (deviatoric)
+  Tensor<T> alpha_in;  // alpha at last load reversal
+  Tensor<T> fabric;    // model fabric F (deviatoric)
+};
+
+/// kOk: integrated to tolerance. kUnreliable: integrated over the whole increment, but at least
+/// one substep of the minimum size was accepted with a local error above the tolerance.
+/// kFailed: not integrated (non-finite input or result, p below options.min_pressure, e outside
+/// the range of the elastic law, no admissible plastic modulus, max_substeps exhausted); the
+/// returned state is then the start state, unchanged.
+enum class UpdateStatus { kOk, kUnreliable, kFailed };
+
+/// The explicit substep scheme: kBogackiShampine, the embedded Runge-Kutta pair of order 3(2)
+/// (Bogacki & Shampine 1989; the default, ours), or kModifiedEuler, the order 2(1) pair of Sloan,
+/// Abbo & Sheng (2001). Both share the error measure, dyadic substeps and drift correction.
+enum class IntegrationScheme { kBogackiShampine, kModifiedEuler };
+
+struct IntegrationOptions {
+  IntegrationScheme scheme = IntegrationScheme::kBogackiShampine;
+  double tolerance = 1e-6;    // local relative error per substep (Sloan et al. 2001, STOL)
+  double min_substep = 1e-6;  // smallest substep, as a fraction of the strain increment
+  int max_substeps = 100000;  // attempted substeps per update, accepted or rejected
+  double min_pressure = 100.0 /*Pa*/;
+  /// With T = ceres::Jet: also reject substeps whose derivative parts are unstable (relative
+  /// error estimate above 1 %, Bogacki-Shampine only, down to 1/4096 of the segment).
+  /// update_with_strain_derivatives and update_with_tangent switch it on (strain seeds excite
+  /// the stiff asymmetric lateral mode of a triaxial path); the fits switch it on for their
+  /// parameter derivatives. Off, the substeps of a Jet update are those of the double update.
+  bool guard_derivatives = false;
+};
+
+/// The value (non-derivative part) of a scalar.
+inline double value_of(double x) { return x; }
+template <typename U, int N>
+double value_of(const ceres::Jet<U, N>& x) {
+  return value_of(x.a);
+}
+
+/// Strain-driven update: strain_increment is compression positive (de_v = tr > 0 compacts).
+template <typename T>
+UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
+                          const Tensor<T>& strain_increment, State<T>& end,
+                          const IntegrationOptions& options = {});
+
+/// Consistent (algorithmic) tangent d(stress_end)/d(strain_increment), via Jets seeded on the
+/// 6 independent strain components; D(3*i+j, 3*k+l) = d sigma_ij / d eps_kl (symmetrised: the
+/// derivative w.r.t. eps_kl and eps_lk are equal, each half of the engineering-shear derivative),
+/// so that d sigma_ij = sum_kl D(3i+j,3k+l) d eps_kl for symmetric d eps. [Pa]
+UpdateStatus update_with_tangent(const Parameters<double>& par, const State<double>& start,
+                                 const Tensor<double>& strain_increment, State<double>& end,
+                                 Eigen::Matrix<double, 9, 9>& tangent,
+                                 const IntegrationOptions& options = {});
+
+/// Jet seeded on the 6 independent strain components (Voigt xx, yy, zz, xy, yz, xz; each shear
+/// seed moves eps_ij and eps_ji together).
+using StrainJet = ceres::Jet<double, 6>;
+
+/// The update with every state variable differentiated w.r.t. the 6 strain components (the raw
+/// form of update_with_tangent; the material-point driver uses it for its Newton matrix and for
+/// the chain rule of parameter derivatives). end.x.a are the values, end.x.v[k] = d x / d eps_k.
+UpdateStatus update_with_strain_derivatives(const Parameters<double>& par,
+                                            const State<double>& start,
+                                            const Tensor<double>& strain_increment,
+                                            State<StrainJet>& end,
+                                            const IntegrationOptions& options = {});
+
+/// Throws std::runtime_error naming the first non-physical parameter.
+void validate_parameters(const Parameters<double>& par);
+
+/// Parameters from the calibration output (JSON, see docs/model.md); throws std::runtime_error
+/// naming the missing/invalid key.
+Parameters<double> read_parameters_json(const std::string& path);
+/// Writes the layout read_parameters_json reads (each parameter with value and unit).
+void write_parameters_json(const Parameters<double>& par, const std::string& path);
+
+/// What a calibration knows about one parameter, written next to its value by the overload of
+/// write_parameters_json below (read_parameters_json ignores it).
+struct ParameterAnnotation {
+  std::string name;             ///< a key of "parameters" (a parameter not in the file is an error)
+  double lower = 0.0, upper = 0.0;
+  double standard_error = -1.0;  ///< < 0: not estimated (written as null)
+  bool fixed = true, at_bound = false;
+  std::string stage;            ///< the fit stage that set it
+};
+/// The same layout, each parameter with its annotation ("lower", "upper", "standard_error",
+/// "fixed", "at_bound", "stage"), and the members of extra_json_object (a JSON object text, e.g.
+/// "provenance") added at the top level. Throws std::runtime_error if extra_json_object is not
+/// an object or names a key of the layout.
+void write_parameters_json(const Parameters<double>& par, const std::string& path,
+                           const std::vector<ParameterAnnotation>& annotations,
+                           const std::string& extra_json_object);
+
+/// The parameters with another scalar type (derivative parts zero).
+template <typename U, typename T>
+Parameters<U> cast_parameters(const Parameters<T>& par);
+/// The state with another scalar type (derivative parts zero).
+template <typename U, typename T>
+State<U> cast_state(const State<T>& state);
+/// A tensor with another scalar type (derivative parts zero).
+template <typename U, typename T>
+Tensor<U> cast_tensor(const Tensor<T>& tensor);
+
+/// f/p = ||r - alpha|| - sqrt(2/3) m: < 0 inside the yield cone, 0 on it.
+template <typename T>
+T relative_yield_function(const Parameters<T>& par, const State<T>& state);
+
+/// Quantities of the model at a state (for drivers, tests and output).
+template <typename T>
+struct ModelQuantities {
+  T p, G, K;              // mean stress [Pa], elastic moduli [Pa]
+  Tensor<T> n;            // loading direction (valid only if has_direction)
+  bool has_direction;     // false where r = alpha (n undefined)
+  T cos3theta, g;         // Lode angle measure, g(theta)
+  T e_c, psi, A, zeta;    // critical void ratio, state parameter, F:n, dilatancy state parameter
+  Tensor<T> alpha_b, alpha_d;  // bounding and dilatancy image back-stress ratios
+  T D, h, K_p, N;         // dilatancy, hardening coefficient, plastic modulus [Pa], n:r on f = 0
+};
+/// Evaluates the model at a state; returns false where p <= 0 or e is outside (0, 2.97).
+template <typename T>
+bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuantities<T>& q);
+
+}  // namespace calibration
+
+#include "calibration/acst_model_impl.h"

@@ -1,0 +1,193 @@
+// Calibration of the ACST model (acst_model.h) to DEM triaxial tests: the test data, the staged
+// and joint Ceres fits, the SFF strength relation and the outputs. docs/calibration.md describes
+// the stages, the objective (weights, residuals, units), the bounds and the outputs.
+//
+// Conventions: compression positive (strains, stresses); stresses in Pa; strains as fractions.
+// The model fabric is F = A_DEM / a_cs (acst-model.md), so the DEM's triaxial anisotropy
+// a_c = A_zz - (A_xx + A_yy)/2 is compared with a_cs (F_zz - (F_xx + F_yy)/2).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "calibration/acst_model.h"
+#include "calibration/material_point.h"
+
+namespace ceres {
+class Problem;
+}
+
+namespace calibration {
+
+/// One drained triaxial DEM test (sigma_3 constant) as data for the fit.
+struct TestData {
+  std::string name;             ///< short name (the run file's stem)
+  std::string source;           ///< the file(s) it was read from
+  std::uint64_t seed = 0;       ///< the DEM run's seed (0 if unknown)
+  std::string program_version;  ///< the program that wrote the run ("" if unknown)
+  double p0 = 0.0;              ///< initial isotropic mean stress = sigma_3 [Pa]
+  double e0 = 0.0;              ///< initial void ratio
+  double a_c0 = 0.0;            ///< initial triaxial fabric anisotropy a_c (first snapshot)
+  double friction = 0.0;        ///< interparticle friction mu (SFF relation; 0 if unknown)
+  /// Series rows (walls): axial strain, q/p, volumetric strain, void ratio, mean stress [Pa].
+  std::vector<double> axial_strain, eta, volumetric_strain, void_ratio, p;
+  /// Snapshots (SFF table): axial strain, contact-normal anisotropy a_c, normal-force
+  /// anisotropy a_n, mobilisation m, stress ratio eta from the contacts.
+  std::vector<double> snapshot_axial_strain, a_c, a_n, mobilisation, snapshot_eta;
+};
+
+/// Reads a run file: /series (axial_strain, eta, volumetric_strain, void_ratio, p) and the SFF
+/// table /analysis/sff (axial_strain, a_c, a_n, m, eta), the friction from the stored config.
+/// Throws std::runtime_error naming the file and what is missing (e.g. no /analysis/sff).
+TestData read_run_file(const std::string& path);
+
+/// Reads the reduced CSV pair (series columns and SFF columns, with headers, as
+/// bench/reference/*_series.csv and *_sff.csv); friction as given.
+TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv,
+                       const std::string& name, double friction);
+
+/// Throws std::runtime_error naming the test and the problem: empty or unequal curves, fewer
+/// than 3 rows, non-finite values, non-increasing axial strain, p0 or e0 out of range.
+void validate_test_data(const TestData& test);
+
+/// The fitted vector: the 15 model parameters (order of Parameters) and a_cs, the critical-state
+/// norm of the DEM fabric tensor A (F = A/a_cs).
+inline constexpr int kNumFitParameters = 16;
+using FitVector = std::array<double, kNumFitParameters>;
+inline constexpr int kAcsIndex = 15;
+/// Names as in the parameter file, then "a_cs".
+const std::array<const char*, kNumFitParameters>& fit_parameter_names();
+/// Index of a name in FitVector; throws for an unknown name.
+int fit_parameter_index(const std::string& name);
+FitVector to_fit_vector(const Parameters<double>& par, double a_cs);
+Parameters<double> model_parameters(const FitVector& x);
+
+enum class Loss { kNone, kHuber, kCauchy };
+enum class Stage { kCsl, kElastic, kFabric, kPlastic, kJoint };
+const char* to_string(Stage stage);
+/// "all" or one stage name; throws std::runtime_error for another word.
+std::vector<Stage> parse_stages(const std::string& text);
+Loss parse_loss(const std::string& text);
+
+struct FitOptions {
+  std::vector<Stage> stages = {Stage::kCsl, Stage::kElastic, Stage::kFabric, Stage::kPlastic,
+                               Stage::kJoint};
+  int starts = 3;            ///< starts of the plastic and joint stages (1 = staged values only)
+  std::uint64_t seed = 1;    ///< seed of the extra starts
+  Loss loss = Loss::kNone;
+  double loss_scale = 1.0;   ///< in units of the normalised residual
+  /// Residual scales: each residual is (model - DEM) / scale (docs/calibration.md).
+  double eta_scale = 0.05;          ///< q/p
+  double volumetric_scale = 0.005;  ///< volumetric strain
+  double fabric_scale = 0.05;       ///< a_c
+  int max_points = 60;              ///< series rows per test used in the fit (evenly subsampled)
+  int max_iterations = 60;          ///< Ceres iterations per start
+  double critical_window = 0.1;     ///< axial-strain window at the end that defines the DEM critical state
+  /// Integration for the fit: the curves need ~1e-6, not the 1e-9 of the driver's default.
+  DriverOptions driver = fit_driver_options();
+  FitVector initial = default_initial();  ///< start values (a_cs is measured, this is a fallback)
+  FitVector lower = default_lower(), upper = default_upper();
+  /// Never fitted: c (no extension tests) and m (acst-model.md: fixed 0.01).
+  std::vector<std::string> fixed = {"c", "m"};
+  bool verbose = false;  ///< Ceres progress to stdout
+
+  static DriverOptions fit_driver_options();
+  static FitVector default_initial();
+  static FitVector default_lower();
+  static FitVector default_upper();
+};
+
+struct ParameterEstimate {
+  double value = 0.0, lower = 0.0, upper = 0.0;
+  double standard_error = -1.0;  ///< < 0: not estimated (fixed, or no covariance)
+  bool fixed = true;             ///< not a free parameter of any stage
+  bool at_bound = false;         ///< within 1e-4 of the range of a bound (covariance ignores bounds)
+  std::string stage;             ///< the stage that set it ("" = initial value)
+};
+
+/// Errors of the model against one test, over the rows and snapshots it was fitted to.
+struct TestErrors {
+  std::string name;
+  int rows = 0, snapshots = 0;
+  double rms_eta = 0.0, rms_volumetric = 0.0, rms_void_ratio = 0.0, rms_a_c = 0.0;
+  double max_abs_eta = 0.0;
+  double rms_normalised = 0.0;  ///< RMS of all normalised residuals of the joint objective
+  std::string status;           ///< model status along the path
+};
+
+struct StageReport {
+  std::string stage;
+  int free_parameters = 0, residuals = 0, starts = 0;
+  double initial_cost = 0.0, final_cost = 0.0;
+  std::string message;
+};
+
+/// eta = c1 a_c + c2 a_n + c3 mu m over all snapshots (linear least squares).
+struct SffRelationFit {
+  bool available = false;
+  int snapshots = 0;
+  std::array<double, 3> coefficients{}, standard_errors{};
+  double rms = 0.0;        ///< of eta - fit
+  double distance = 0.0;   ///< || c - (2/5, 2/5, 3/5) ||
+  std::string note;
+};
+
+struct CriticalStatePoint {
+  std::string test;
+  double p = 0.0, void_ratio = 0.0, eta = 0.0, a_c = 0.0;
+};
+
+struct CalibrationResult {
+  FitVector values{};
+  std::array<ParameterEstimate, kNumFitParameters> estimates{};
+  double covariance_scale = 0.0;  ///< s^2 = 2 cost / (n - p) of the last Ceres stage
+  std::vector<CriticalStatePoint> critical_states;
+  std::vector<StageReport> stages;
+  std::vector<TestErrors> errors;
+  SffRelationFit sff;
+  std::vector<std::string> notes;  ///< decisions taken (fixed parameters and why)
+};
+
+/// The staged and joint calibration of options.stages over all tests (docs/calibration.md).
+/// Throws std::runtime_error for invalid data or options.
+CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions& options);
+
+/// Model curves of a test at x, on the strains of the test's series rows and snapshots.
+struct ModelCurves {
+  std::vector<double> axial_strain, eta, volumetric_strain, void_ratio;  ///< at the series rows
+  std::vector<double> a_c;                                              ///< at the snapshots
+  UpdateStatus status = UpdateStatus::kOk;
+  int rows_reached = 0;  ///< series rows reached before a failure
+};
+ModelCurves simulate_test(const TestData& test, const FitVector& x, const DriverOptions& driver);
+
+/// Errors of x against a test (every series row and snapshot).
+TestErrors test_errors(const TestData& test, const FitVector& x, const FitOptions& options);
+
+/// The SFF strength relation over all snapshots with a known friction (and a_c, a_n, m finite).
+SffRelationFit fit_sff_relation(const std::vector<TestData>& tests);
+
+/// Standard errors of `size` parameters from a solved Ceres problem's covariance, scaled by
+/// s^2 = 2 cost / (n_residuals - n_free) (Ceres assumes unit residual variance). Entries of
+/// constant (manifold) coordinates are 0. Returns false (errors untouched) if the covariance is
+/// rank deficient or n_residuals <= n_free.
+bool scaled_standard_errors(ceres::Problem& problem, double* block, int size, double cost,
+                            int n_residuals, int n_free, std::vector<double>& errors,
+                            double* scale = nullptr);
+
+/// Writes the outputs into folder (created if needed): parameters.json (the parameter file,
+/// readable by read_parameters_json, with bounds, standard errors, at_bound flags and
+/// provenance), <test>_curves.csv and <test>_fabric.csv (model against DEM), summary.md.
+/// Returns the summary table (Markdown) that summary.md holds.
+std::string write_calibration_outputs(const std::string& folder,
+                                      const std::vector<TestData>& tests,
+                                      const CalibrationResult& result, const FitOptions& options,
+                                      const std::string& program_version,
+                                      const std::string& command_line);
+
+/// The summary table of errors per test and of the SFF relation (Markdown).
+std::string summary_markdown(const CalibrationResult& result);
+
+}  // namespace calibration

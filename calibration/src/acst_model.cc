@@ -1,0 +1,88 @@
+#include "calibration/acst_model.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace calibration {
+
+namespace {
+
+// Voigt order of the 6 independent strain components seeded as Jet derivatives.
+constexpr int kVoigtRow[6] = {0, 1, 2, 0, 1, 0};
+constexpr int kVoigtCol[6] = {0, 1, 2, 1, 2, 2};
+
+}  // namespace
+
+UpdateStatus update_with_strain_derivatives(const Parameters<double>& par,
+                                            const State<double>& start,
+                                            const Tensor<double>& strain_increment,
+                                            State<StrainJet>& end, const IntegrationOptions& options) {
+  const Parameters<StrainJet> par_jet = cast_parameters<StrainJet>(par);
+  const State<StrainJet> start_jet = cast_state<StrainJet>(start);
+  Tensor<StrainJet> deps;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      deps(i, j) = StrainJet(0.5 * (strain_increment(i, j) + strain_increment(j, i)));
+  for (int k = 0; k < 6; ++k) {
+    deps(kVoigtRow[k], kVoigtCol[k]).v[k] = 1.0;
+    deps(kVoigtCol[k], kVoigtRow[k]).v[k] = 1.0;  // the same Jet for eps_kl and eps_lk
+  }
+  IntegrationOptions guarded = options;
+  guarded.guard_derivatives = true;
+  return update_state(par_jet, start_jet, deps, end, guarded);
+}
+
+UpdateStatus update_with_tangent(const Parameters<double>& par, const State<double>& start,
+                                 const Tensor<double>& strain_increment, State<double>& end,
+                                 Eigen::Matrix<double, 9, 9>& tangent,
+                                 const IntegrationOptions& options) {
+  State<StrainJet> end_jet;
+  const UpdateStatus status =
+      update_with_strain_derivatives(par, start, strain_increment, end_jet, options);
+  end = cast_state<double>(end_jet);
+  tangent.setZero();
+  if (status == UpdateStatus::kFailed) return status;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 6; ++k) {
+        const int a = kVoigtRow[k], b = kVoigtCol[k];
+        const double d = end_jet.stress(i, j).v[k];
+        if (a == b) {
+          tangent(3 * i + j, 3 * a + b) = d;
+        } else {  // d/d(eps_ab) with eps_ab = eps_ba moving together: half to each
+          tangent(3 * i + j, 3 * a + b) = 0.5 * d;
+          tangent(3 * i + j, 3 * b + a) = 0.5 * d;
+        }
+      }
+  return status;
+}
+
+void validate_parameters(const Parameters<double>& par) {
+  auto require = [](bool ok, const char* name, double value, const char* range) {
+    if (!ok)
+      throw std::runtime_error(std::string("ACST parameter '") + name + "' = " +
+                               std::to_string(value) + " is not physical: it must be " + range);
+  };
+  auto finite = [](double x) { return std::isfinite(x); };
+  require(finite(par.G0) && par.G0 > 0.0, "G0", par.G0, "> 0");
+  require(finite(par.nu) && par.nu > -1.0 && par.nu < 0.5, "nu", par.nu, "in (-1, 0.5)");
+  require(finite(par.M_c) && par.M_c > 0.0, "M_c", par.M_c, "> 0");
+  require(finite(par.c) && par.c > 0.0 && par.c <= 1.0, "c", par.c, "in (0, 1]");
+  require(finite(par.e_gamma) && par.e_gamma > 0.0 && par.e_gamma < 2.97, "e_gamma", par.e_gamma,
+          "in (0, 2.97)");
+  require(finite(par.lambda_c) && par.lambda_c >= 0.0, "lambda_c", par.lambda_c, ">= 0");
+  require(finite(par.xi) && par.xi > 0.0, "xi", par.xi, "> 0");
+  require(finite(par.m) && par.m > 0.0 && par.m < par.c * par.M_c, "m", par.m,
+          "in (0, c M_c)");
+  require(finite(par.h0) && par.h0 > 0.0, "h0", par.h0, "> 0");
+  require(finite(par.c_h) && par.c_h >= 0.0 && par.c_h * par.e_gamma < 1.0, "c_h", par.c_h,
+          ">= 0 with c_h e_gamma < 1");
+  require(finite(par.n_b) && par.n_b >= 0.0, "n_b", par.n_b, ">= 0");
+  require(finite(par.A0) && par.A0 >= 0.0, "A0", par.A0, ">= 0");
+  require(finite(par.n_d) && par.n_d >= 0.0, "n_d", par.n_d, ">= 0");
+  require(finite(par.e_A) && par.e_A >= 0.0, "e_A", par.e_A, ">= 0");
+  require(finite(par.k_F) && par.k_F >= 0.0, "k_F", par.k_F, ">= 0");
+}
+
+}  // namespace calibration

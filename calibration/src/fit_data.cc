@@ -1,0 +1,192 @@
+// Reading DEM tests for the calibration: run files (dem::RunFile) or the reduced CSV pair.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "calibration/fit.h"
+#include "dem/run_file.h"
+
+namespace calibration {
+
+namespace {
+
+std::string stem(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const std::size_t dot = name.find('.');
+  return dot == std::string::npos ? name : name.substr(0, dot);
+}
+
+/// [contact] friction from a TOML config text (0 if absent).
+double config_friction(const std::string& config) {
+  std::istringstream lines(config);
+  std::string line, section;
+  while (std::getline(lines, line)) {
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos) continue;
+    line = line.substr(first);
+    if (line[0] == '[') {
+      section = line.substr(1, line.find(']') - 1);
+      continue;
+    }
+    const std::size_t eq = line.find('=');
+    if (section != "contact" || eq == std::string::npos) continue;
+    std::string key = line.substr(0, eq);
+    key.erase(key.find_last_not_of(" \t") + 1);
+    if (key == "friction") return std::stod(line.substr(eq + 1));
+  }
+  return 0.0;
+}
+
+std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("calibration data '" + path + "' cannot be opened");
+  std::string line;
+  if (!std::getline(in, line)) throw std::runtime_error("calibration data '" + path + "' is empty");
+  std::vector<std::string> names;
+  std::istringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) {
+    while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
+    names.push_back(name);
+  }
+  std::map<std::string, std::vector<double>> columns;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty() || line == "\r") continue;
+    std::istringstream fields(line);
+    std::size_t k = 0;
+    for (std::string field; std::getline(fields, field, ','); ++k) {
+      if (k >= names.size())
+        throw std::runtime_error("calibration data '" + path + "' line " +
+                                 std::to_string(number) + ": more fields than columns");
+      double v = std::nan("");
+      try {
+        v = std::stod(field);
+      } catch (const std::exception&) {
+        // a non-number reads as NaN; validate_test_data names it
+      }
+      columns[names[k]].push_back(v);
+    }
+    if (k != names.size())
+      throw std::runtime_error("calibration data '" + path + "' line " + std::to_string(number) +
+                               ": " + std::to_string(k) + " fields, " +
+                               std::to_string(names.size()) + " columns");
+  }
+  return columns;
+}
+
+const std::vector<double>& column(const std::map<std::string, std::vector<double>>& table,
+                                  const std::string& name, const std::string& where) {
+  const auto it = table.find(name);
+  if (it == table.end())
+    throw std::runtime_error("calibration data '" + where + "': missing column '" + name + "'");
+  return it->second;
+}
+
+void fill_from_tables(TestData& t, const std::map<std::string, std::vector<double>>& series,
+                      const std::string& series_where,
+                      const std::map<std::string, std::vector<double>>& sff,
+                      const std::string& sff_where) {
+  t.axial_strain = column(series, "axial_strain", series_where);
+  t.eta = column(series, "eta", series_where);
+  t.volumetric_strain = column(series, "volumetric_strain", series_where);
+  t.void_ratio = column(series, "void_ratio", series_where);
+  t.p = column(series, "p", series_where);
+  t.snapshot_axial_strain = column(sff, "axial_strain", sff_where);
+  t.a_c = column(sff, "a_c", sff_where);
+  t.a_n = column(sff, "a_n", sff_where);
+  t.mobilisation = column(sff, "m", sff_where);
+  t.snapshot_eta = column(sff, "eta", sff_where);
+  if (!t.p.empty()) t.p0 = t.p.front();
+  if (!t.void_ratio.empty()) t.e0 = t.void_ratio.front();
+  if (!t.a_c.empty()) t.a_c0 = t.a_c.front();
+}
+
+}  // namespace
+
+TestData read_run_file(const std::string& path) {
+  TestData t;
+  t.name = stem(path);
+  t.source = path;
+  const dem::RunFile file = dem::RunFile::open(path);
+  const dem::RunMetadata meta = file.metadata();
+  t.seed = meta.seed;
+  t.program_version = meta.program_version;
+  t.friction = config_friction(meta.config_text);
+  std::map<std::string, std::vector<double>> series;
+  for (const char* name : {"axial_strain", "eta", "volumetric_strain", "void_ratio", "p"}) {
+    const auto& names = file.series_names();
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw std::runtime_error("run file '" + path + "': missing series '" + name + "'");
+    series[name] = file.series(name);
+  }
+  std::map<std::string, std::vector<double>> sff;
+  try {
+    for (auto& [name, values] : file.read_table("sff")) sff[name] = std::move(values);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("run file '" + path +
+                             "' has no SFF table /analysis/sff (run `sffcal sff " + path +
+                             "` first): " + e.what());
+  }
+  fill_from_tables(t, series, path + ":/series", sff, path + ":/analysis/sff");
+  validate_test_data(t);
+  return t;
+}
+
+TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv,
+                       const std::string& name, double friction) {
+  TestData t;
+  t.name = name;
+  t.source = series_csv + " + " + sff_csv;
+  t.friction = friction;
+  fill_from_tables(t, read_csv(series_csv), series_csv, read_csv(sff_csv), sff_csv);
+  validate_test_data(t);
+  return t;
+}
+
+void validate_test_data(const TestData& t) {
+  auto fail = [&](const std::string& what) {
+    throw std::runtime_error("test '" + t.name + "' (" + t.source + "): " + what);
+  };
+  const std::size_t n = t.axial_strain.size();
+  if (n < 3) fail("fewer than 3 series rows (" + std::to_string(n) + ")");
+  const std::pair<const char*, const std::vector<double>*> series[] = {
+      {"eta", &t.eta}, {"volumetric_strain", &t.volumetric_strain},
+      {"void_ratio", &t.void_ratio}, {"p", &t.p}, {"axial_strain", &t.axial_strain}};
+  for (const auto& [name, values] : series) {
+    if (values->size() != n)
+      fail(std::string("series '") + name + "' has " + std::to_string(values->size()) +
+           " rows, axial_strain " + std::to_string(n));
+    for (std::size_t k = 0; k < n; ++k)
+      if (!std::isfinite((*values)[k]))
+        fail(std::string("series '") + name + "' row " + std::to_string(k) + " is not finite");
+  }
+  for (std::size_t k = 1; k < n; ++k)
+    if (!(t.axial_strain[k] > t.axial_strain[k - 1]))
+      fail("axial_strain does not increase at row " + std::to_string(k));
+  const std::size_t m = t.snapshot_axial_strain.size();
+  if (m < 2) fail("fewer than 2 snapshots in the SFF table (" + std::to_string(m) + ")");
+  const std::pair<const char*, const std::vector<double>*> snaps[] = {
+      {"a_c", &t.a_c}, {"a_n", &t.a_n}, {"m", &t.mobilisation}, {"eta", &t.snapshot_eta},
+      {"axial_strain", &t.snapshot_axial_strain}};
+  for (const auto& [name, values] : snaps) {
+    if (values->size() != m)
+      fail(std::string("SFF column '") + name + "' has " + std::to_string(values->size()) +
+           " rows, axial_strain " + std::to_string(m));
+    for (std::size_t k = 0; k < m; ++k)
+      if (!std::isfinite((*values)[k]))
+        fail(std::string("SFF column '") + name + "' snapshot " + std::to_string(k) +
+             " is not finite");
+  }
+  if (!(t.p0 > 0.0)) fail("initial p must be > 0 Pa");
+  if (!(t.e0 > 0.0 && t.e0 < 2.97)) fail("initial void ratio must lie in (0, 2.97)");
+  if (!(t.friction >= 0.0)) fail("friction must be >= 0");
+}
+
+}  // namespace calibration

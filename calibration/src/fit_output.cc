@@ -1,0 +1,180 @@
+// Outputs of the calibration: parameter file, curves, summary (docs/calibration.md).
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "calibration/fit.h"
+
+namespace calibration {
+
+namespace {
+
+using Json = nlohmann::json;
+
+std::string number(double x, int digits = 4) {
+  if (!std::isfinite(x)) return "nan";
+  std::ostringstream s;
+  s << std::setprecision(digits) << x;
+  return s.str();
+}
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buffer;
+}
+
+void write_csv(const std::filesystem::path& path, const std::string& header,
+               const std::vector<std::vector<double>>& columns) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+  out << header << '\n' << std::setprecision(10);
+  const std::size_t n = columns.empty() ? 0 : columns[0].size();
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c][k];
+    out << '\n';
+  }
+  if (!out) throw std::runtime_error("write failed: '" + path.string() + "'");
+}
+
+}  // namespace
+
+std::string summary_markdown(const CalibrationResult& r) {
+  std::ostringstream s;
+  s << "| test | rows | snapshots | RMS q/p | max abs q/p | RMS eps_v | RMS e | RMS a_c | "
+       "RMS normalised | model status |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const TestErrors& e : r.errors)
+    s << "| " << e.name << " | " << e.rows << " | " << e.snapshots << " | " << number(e.rms_eta)
+      << " | " << number(e.max_abs_eta) << " | " << number(e.rms_volumetric) << " | "
+      << number(e.rms_void_ratio) << " | " << number(e.rms_a_c) << " | "
+      << number(e.rms_normalised) << " | " << e.status << " |\n";
+  s << "\n| parameter | value | standard error | lower | upper | at bound | stage |\n"
+       "|---|---|---|---|---|---|---|\n";
+  const auto& names = fit_parameter_names();
+  for (int i = 0; i < kNumFitParameters; ++i) {
+    const ParameterEstimate& e = r.estimates[i];
+    s << "| " << names[i] << " | " << number(e.value, 5) << " | "
+      << (e.standard_error >= 0.0 ? number(e.standard_error, 3) : std::string("-")) << " | "
+      << number(e.lower) << " | " << number(e.upper) << " | " << (e.at_bound ? "yes" : "")
+      << " | " << (e.fixed ? "fixed" : e.stage) << " |\n";
+  }
+  s << "\nCritical states (last window of each test):\n\n| test | p [Pa] | e | q/p | a_c |\n"
+       "|---|---|---|---|---|\n";
+  for (const auto& c : r.critical_states)
+    s << "| " << c.test << " | " << number(c.p, 6) << " | " << number(c.void_ratio) << " | "
+      << number(c.eta) << " | " << number(c.a_c) << " |\n";
+  s << "\nStages:\n\n| stage | free | residuals | starts | initial cost | final cost |\n"
+       "|---|---|---|---|---|---|\n";
+  for (const StageReport& st : r.stages)
+    s << "| " << st.stage << " | " << st.free_parameters << " | " << st.residuals << " | "
+      << st.starts << " | " << number(st.initial_cost) << " | " << number(st.final_cost)
+      << " |\n";
+  s << "\nSFF strength relation eta = c1 a_c + c2 a_n + c3 mu m: ";
+  if (r.sff.available) {
+    s << "c = (" << number(r.sff.coefficients[0]) << " ± " << number(r.sff.standard_errors[0], 2)
+      << ", " << number(r.sff.coefficients[1]) << " ± " << number(r.sff.standard_errors[1], 2)
+      << ", " << number(r.sff.coefficients[2]) << " ± " << number(r.sff.standard_errors[2], 2)
+      << ") over " << r.sff.snapshots << " snapshots, RMS " << number(r.sff.rms)
+      << ", distance from (2/5, 2/5, 3/5) " << number(r.sff.distance) << "\n";
+  } else {
+    s << r.sff.note << "\n";
+  }
+  if (!r.notes.empty()) {
+    s << "\nNotes:\n";
+    for (const std::string& n : r.notes) s << "- " << n << "\n";
+  }
+  return s.str();
+}
+
+std::string write_calibration_outputs(const std::string& folder,
+                                      const std::vector<TestData>& tests,
+                                      const CalibrationResult& result, const FitOptions& options,
+                                      const std::string& program_version,
+                                      const std::string& command_line) {
+  namespace fs = std::filesystem;
+  fs::create_directories(folder);
+  const auto& names = fit_parameter_names();
+  std::vector<ParameterAnnotation> annotations;
+  for (int i = 0; i < kAcsIndex; ++i) {
+    const ParameterEstimate& e = result.estimates[i];
+    annotations.push_back({names[i], e.lower, e.upper, e.standard_error, e.fixed, e.at_bound,
+                           e.stage});
+  }
+  Json extra;
+  const ParameterEstimate& acs = result.estimates[kAcsIndex];
+  extra["fabric_normalisation"] = {
+      {"a_cs", {{"value", acs.value}, {"unit", "1"},
+                {"standard_error", acs.standard_error >= 0 ? Json(acs.standard_error) : Json()},
+                {"meaning", "critical-state norm of the DEM fabric tensor A; F = A / a_cs"}}}};
+  Json inputs = Json::array();
+  for (const TestData& t : tests)
+    inputs.push_back({{"name", t.name}, {"source", t.source}, {"seed", t.seed},
+                      {"program_version", t.program_version}, {"p0_Pa", t.p0}, {"e0", t.e0},
+                      {"a_c0", t.a_c0}, {"friction", t.friction}});
+  Json stages = Json::array();
+  for (const StageReport& s : result.stages)
+    stages.push_back({{"stage", s.stage}, {"free_parameters", s.free_parameters},
+                      {"residuals", s.residuals}, {"starts", s.starts},
+                      {"initial_cost", s.initial_cost}, {"final_cost", s.final_cost},
+                      {"message", s.message}});
+  const char* loss = options.loss == Loss::kHuber    ? "huber"
+                     : options.loss == Loss::kCauchy ? "cauchy"
+                                                     : "none";
+  extra["provenance"] = {{"program", "sffcal calibrate"},
+                         {"program_version", program_version},
+                         {"date", utc_now()},
+                         {"command_line", command_line},
+                         {"inputs", inputs}};
+  extra["fit"] = {{"stages", stages},
+                  {"loss", loss},
+                  {"loss_scale", options.loss_scale},
+                  {"starts", options.starts},
+                  {"seed", options.seed},
+                  {"residual_scales",
+                   {{"eta", options.eta_scale},
+                    {"volumetric_strain", options.volumetric_scale},
+                    {"a_c", options.fabric_scale}}},
+                  {"covariance_scale_s2", result.covariance_scale},
+                  {"notes", result.notes}};
+  if (result.sff.available)
+    extra["sff_relation"] = {{"coefficients", result.sff.coefficients},
+                             {"standard_errors", result.sff.standard_errors},
+                             {"snapshots", result.sff.snapshots},
+                             {"rms", result.sff.rms},
+                             {"distance_from_2_5_2_5_3_5", result.sff.distance}};
+  Json errors = Json::array();
+  for (const TestErrors& e : result.errors)
+    errors.push_back({{"test", e.name}, {"rms_eta", e.rms_eta}, {"rms_volumetric", e.rms_volumetric},
+                      {"rms_void_ratio", e.rms_void_ratio}, {"rms_a_c", e.rms_a_c},
+                      {"status", e.status}});
+  extra["errors"] = errors;
+  write_parameters_json(model_parameters(result.values), (fs::path(folder) / "parameters.json").string(),
+                        annotations, extra.dump());
+
+  for (const TestData& t : tests) {
+    const ModelCurves c = simulate_test(t, result.values, options.driver);
+    write_csv(fs::path(folder) / (t.name + "_curves.csv"),
+              "axial_strain,dem_eta,model_eta,dem_volumetric_strain,model_volumetric_strain,"
+              "dem_void_ratio,model_void_ratio",
+              {c.axial_strain, t.eta, c.eta, t.volumetric_strain, c.volumetric_strain,
+               t.void_ratio, c.void_ratio});
+    write_csv(fs::path(folder) / (t.name + "_fabric.csv"), "axial_strain,dem_a_c,model_a_c",
+              {t.snapshot_axial_strain, t.a_c, c.a_c});
+  }
+  const std::string summary = summary_markdown(result);
+  std::ofstream out(fs::path(folder) / "summary.md");
+  out << "# Calibration summary\n\n" << summary;
+  if (!out) throw std::runtime_error("cannot write summary.md in '" + folder + "'");
+  return summary;
+}
+
+}  // namespace calibration

@@ -1,0 +1,138 @@
+// The parameter file of the calibration (docs/model.md, "Parameter file"):
+//   {"model": "acst", "reference_pressure": {"value": 101325, "unit": "Pa"},
+//    "parameters": {"G0": {"value": 125, "unit": "1"}, ...}}
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "calibration/acst_model.h"
+
+namespace calibration {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// Name and member of each parameter, in the order of acst-model.md. All are dimensionless.
+const std::pair<const char*, double Parameters<double>::*> kFields[] = {
+    {"G0", &Parameters<double>::G0},           {"nu", &Parameters<double>::nu},
+    {"M_c", &Parameters<double>::M_c},         {"c", &Parameters<double>::c},
+    {"e_gamma", &Parameters<double>::e_gamma}, {"lambda_c", &Parameters<double>::lambda_c},
+    {"xi", &Parameters<double>::xi},           {"m", &Parameters<double>::m},
+    {"h0", &Parameters<double>::h0},           {"c_h", &Parameters<double>::c_h},
+    {"n_b", &Parameters<double>::n_b},         {"A0", &Parameters<double>::A0},
+    {"n_d", &Parameters<double>::n_d},         {"e_A", &Parameters<double>::e_A},
+    {"k_F", &Parameters<double>::k_F},
+};
+
+constexpr const char* kDimensionless = "1";
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::runtime_error("parameter file '" + path + "': " + what);
+}
+
+}  // namespace
+
+Parameters<double> read_parameters_json(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot be opened");
+  Json root;
+  try {
+    in >> root;
+  } catch (const Json::parse_error& e) {
+    fail(path, std::string("is not valid JSON: ") + e.what());
+  }
+  if (!root.is_object()) fail(path, "the top level must be an object");
+  if (root.contains("model") && root["model"] != "acst")
+    fail(path, "key 'model' must be \"acst\"");
+  if (root.contains("reference_pressure")) {
+    const Json& pa = root["reference_pressure"];
+    if (!pa.is_object() || !pa.contains("value") || !pa["value"].is_number() ||
+        pa.value("unit", "") != "Pa" || pa["value"].get<double>() != kAtmosphericPressure)
+      fail(path, "key 'reference_pressure' must be {\"value\": 101325, \"unit\": \"Pa\"} (fixed p_a)");
+  }
+  if (!root.contains("parameters") || !root["parameters"].is_object())
+    fail(path, "missing key 'parameters' (an object)");
+  const Json& params = root["parameters"];
+  Parameters<double> par{};
+  for (const auto& [name, member] : kFields) {
+    const std::string key = std::string("parameters.") + name;
+    if (!params.contains(name)) fail(path, "missing key '" + key + "'");
+    const Json& entry = params[name];
+    if (!entry.is_object() || !entry.contains("value"))
+      fail(path, "missing key '" + key + ".value'");
+    if (!entry["value"].is_number()) fail(path, "key '" + key + ".value' must be a number");
+    if (!entry.contains("unit")) fail(path, "missing key '" + key + ".unit'");
+    if (!entry["unit"].is_string() || entry["unit"].get<std::string>() != kDimensionless)
+      fail(path, "key '" + key + ".unit' must be \"1\" (dimensionless)");
+    par.*member = entry["value"].get<double>();
+  }
+  try {
+    validate_parameters(par);
+  } catch (const std::runtime_error& e) {
+    fail(path, e.what());
+  }
+  return par;
+}
+
+namespace {
+
+Json parameters_object(const Parameters<double>& par) {
+  validate_parameters(par);
+  Json root;
+  root["model"] = "acst";
+  root["reference_pressure"] = {{"value", kAtmosphericPressure}, {"unit", "Pa"}};
+  Json params = Json::object();
+  for (const auto& [name, member] : kFields)
+    params[name] = {{"value", par.*member}, {"unit", kDimensionless}};
+  root["parameters"] = params;
+  return root;
+}
+
+void write_json(const Json& root, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) fail(path, "cannot be written");
+  out << root.dump(2) << '\n';
+  if (!out) fail(path, "write failed");
+}
+
+}  // namespace
+
+void write_parameters_json(const Parameters<double>& par, const std::string& path) {
+  write_json(parameters_object(par), path);
+}
+
+void write_parameters_json(const Parameters<double>& par, const std::string& path,
+                           const std::vector<ParameterAnnotation>& annotations,
+                           const std::string& extra_json_object) {
+  Json root = parameters_object(par);
+  for (const ParameterAnnotation& a : annotations) {
+    if (!root["parameters"].contains(a.name))
+      fail(path, "annotation for unknown parameter '" + a.name + "'");
+    Json& entry = root["parameters"][a.name];
+    entry["lower"] = a.lower;
+    entry["upper"] = a.upper;
+    entry["standard_error"] = a.standard_error >= 0.0 ? Json(a.standard_error) : Json(nullptr);
+    entry["fixed"] = a.fixed;
+    entry["at_bound"] = a.at_bound;
+    entry["stage"] = a.stage;
+  }
+  if (!extra_json_object.empty()) {
+    Json extra;
+    try {
+      extra = Json::parse(extra_json_object);
+    } catch (const Json::parse_error& e) {
+      fail(path, std::string("extra content is not valid JSON: ") + e.what());
+    }
+    if (!extra.is_object()) fail(path, "extra content must be a JSON object");
+    for (auto it = extra.begin(); it != extra.end(); ++it) {
+      if (root.contains(it.key())) fail(path, "extra key '" + it.key() + "' is reserved");
+      root[it.key()] = it.value();
+    }
+  }
+  write_json(root, path);
+}
+
+}  // namespace calibration

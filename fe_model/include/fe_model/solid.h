@@ -1,0 +1,164 @@
+// A small-strain solid with a Material at every quadrature point: Q1 displacement elements,
+// Dirichlet and traction boundary conditions that depend on a load factor, Newton-Raphson with
+// the consistent tangent, and load stepping that halves the increment when a step fails.
+//
+// This is the deal.II core of fe_model (after tutorial step-44's quadrature-point history and
+// step-18's small-strain assembly). It is a public header for deal.II programs; light code should
+// use fe_model/triaxial.h instead, which hides deal.II.
+//
+// Conventions: deal.II's, tension positive, throughout this class. Displacements are measured
+// from the reference configuration, which carries the initial stress given to the constructor
+// (e.g. -p0 I for an isotropically consolidated specimen); that stress must be in equilibrium with
+// the tractions at load factor 0, so the first residual of the first step is the load increment
+// alone.
+//
+// Step protocol (MGIS's s0/s1): every quadrature point holds the state at the start of the step
+// (committed) and at its end (trial). solve_increment() works on the trial state only; commit()
+// makes it the new start state, revert() discards it. advance_to() does both with step cutting.
+#ifndef FE_MODEL_SOLID_H_
+#define FE_MODEL_SOLID_H_
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/quadrature_point_data.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fe_model/material.h"
+#include "fe_model/solver_options.h"
+
+namespace fe_model {
+
+/// Per-quadrature-point history (step-44's PointHistory, with MGIS's two states).
+struct PointHistory {
+  PointState start;  ///< committed state, at the start of the current load increment
+  PointState end;    ///< trial state, at the end of the current increment
+  void commit() { start = end; }
+  void revert() { end = start; }
+};
+
+/// Prescribed displacement on the faces with `boundary_id`, for the components set in
+/// `components` (x, y, z). `displacement(x, load)` is evaluated at the support points.
+struct DisplacementCondition {
+  dealii::types::boundary_id boundary_id = 0;
+  std::array<bool, 3> components = {{true, true, true}};
+  std::function<dealii::Tensor<1, 3>(const dealii::Point<3>& x, double load)> displacement;
+};
+
+/// Traction (force per unit reference area, tension positive: a pressure p is -p n) on the faces
+/// with `boundary_id`.
+struct TractionCondition {
+  dealii::types::boundary_id boundary_id = 0;
+  std::function<dealii::Tensor<1, 3>(const dealii::Point<3>& x,
+                                     const dealii::Tensor<1, 3>& outward_normal, double load)>
+      traction;
+};
+
+/// Volume averages over the solid, of the trial (= committed, after commit()) states.
+struct VolumeAverages {
+  double volume = 0.0;
+  SymmetricTensor2 stress;                 ///< tension positive
+  SymmetricTensor2 strain;                 ///< tension positive
+  std::optional<double> fabric_invariant;  ///< if the material has one
+  /// Volume average of each internal variable (empty unless every point has the same number):
+  /// meaningful for quantities that average linearly (e.g. the void ratio of a homogeneous body).
+  std::vector<double> internal_variables;
+};
+
+class Solid {
+ public:
+  /// `triangulation` and `material` must outlive the Solid. Every quadrature point starts with
+  /// material.initial_state(initial_stress).
+  Solid(const dealii::Triangulation<3>& triangulation, const Material& material,
+        const SymmetricTensor2& initial_stress, const SolverOptions& options = {});
+
+  void add_displacement_condition(DisplacementCondition condition);
+  void add_traction_condition(TractionCondition condition);
+
+  /// Distributes the degrees of freedom, builds the (homogeneous) constraints and the sparsity
+  /// pattern and initialises the quadrature-point history. Call after adding the conditions.
+  void setup();
+
+  /// Reaches `load_target` from the committed load, cutting the increment in halves on failure
+  /// (SolverOptions::max_cuts in a row at most). Commits every converged increment. On failure the
+  /// last converged state stays committed and the report says why; it never throws for a
+  /// material or Newton failure.
+  StepReport advance_to(double load_target);
+
+  /// One Newton solve from the committed state to `load_end` (trial state only: call commit() or
+  /// revert() afterwards).
+  NewtonLog solve_increment(double load_end);
+  void commit();
+  void revert();
+
+  /// Evaluates every quadrature point at the trial displacement `u` (from the committed states)
+  /// and assembles the residual R = f_int - f_ext(load) over the free degrees of freedom (zero on
+  /// constrained ones) and, if `with_matrix`, the tangent dR/du. Returns the worst material status;
+  /// on kFailed stops at the first failed point and puts the reason in `message`.
+  MaterialStatus assemble(const dealii::Vector<double>& u, double load, bool with_matrix,
+                          std::string* message = nullptr);
+
+  const dealii::DoFHandler<3>& dof_handler() const { return dof_handler_; }
+  const dealii::AffineConstraints<double>& constraints() const { return constraints_; }
+  /// Current (trial) displacement.
+  const dealii::Vector<double>& solution() const { return solution_; }
+  const dealii::Vector<double>& committed_solution() const { return committed_solution_; }
+  const dealii::Vector<double>& residual() const { return residual_; }
+  const dealii::SparseMatrix<double>& tangent_matrix() const { return tangent_matrix_; }
+  /// Norm of the unconstrained internal force vector of the last assembly.
+  double internal_force_norm() const { return internal_force_norm_; }
+  double committed_load() const { return committed_load_; }
+  const Material& material() const { return material_; }
+
+  VolumeAverages volume_averages() const;
+  /// Calls `visit` with the position and the trial state of every quadrature point.
+  void for_each_point(
+      const std::function<void(const dealii::Point<3>&, const PointState&)>& visit) const;
+  /// Writes the displacement (as is) and per-cell averages of p, q, volumetric strain and the
+  /// stress components (compression positive, like all of fe_model's output) to a VTU file.
+  void write_vtu(const std::string& filename) const;
+
+ private:
+  void apply_prescribed_displacements(double load, dealii::Vector<double>& u) const;
+
+  const dealii::Triangulation<3>& triangulation_;
+  const Material& material_;
+  SymmetricTensor2 initial_stress_;
+  SolverOptions options_;
+
+  dealii::FESystem<3> fe_;
+  dealii::DoFHandler<3> dof_handler_;
+  dealii::QGauss<3> cell_quadrature_;
+  dealii::QGauss<2> face_quadrature_;
+
+  std::vector<DisplacementCondition> displacement_conditions_;
+  std::vector<TractionCondition> traction_conditions_;
+
+  dealii::AffineConstraints<double> constraints_;  // homogeneous: Newton corrections
+  dealii::SparsityPattern sparsity_pattern_;
+  dealii::SparseMatrix<double> tangent_matrix_;
+  dealii::Vector<double> solution_;
+  dealii::Vector<double> committed_solution_;
+  dealii::Vector<double> residual_;
+  double internal_force_norm_ = 0.0;
+  double committed_load_ = 0.0;
+  int last_unreliable_points_ = 0;
+
+  dealii::CellDataStorage<typename dealii::Triangulation<3>::cell_iterator, PointHistory> history_;
+};
+
+}  // namespace fe_model
+
+#endif  // FE_MODEL_SOLID_H_

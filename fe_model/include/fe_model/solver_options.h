@@ -1,0 +1,67 @@
+// Options and logs of the Newton-Raphson load stepping shared by fe_model's problems. No deal.II
+// finite-element headers here, so light translation units can include it.
+#ifndef FE_MODEL_SOLVER_OPTIONS_H_
+#define FE_MODEL_SOLVER_OPTIONS_H_
+
+#include <string>
+#include <vector>
+
+#include "fe_model/material.h"
+
+namespace fe_model {
+
+struct SolverOptions {
+  /// Newton converges when ||R|| <= residual_rtol * ||R_0|| (R_0: the residual of the step's first
+  /// iterate) or ||R|| <= residual_atol * force_scale, force_scale being the norm of the
+  /// internal force vector (so the absolute test is relative to the stress level).
+  double residual_rtol = 1e-10;
+  double residual_atol = 1e-12;
+  int max_newton_iterations = 20;
+  /// Step cutting: the load increment is halved on a failed material update or a Newton failure,
+  /// at most max_cuts times in a row (so the smallest increment is 2^-max_cuts of the nominal one).
+  int max_cuts = 12;
+  /// After a successful cut step the increment is doubled again, up to the nominal one.
+  bool regrow_after_cut = true;
+  /// Treat kUnreliable material updates like failures (cut the step) instead of accepting them.
+  bool cut_on_unreliable = false;
+  /// Print the Newton log (residual norms and ratios) to std::cout.
+  bool verbose = false;
+};
+
+/// The record of one Newton solve (one attempted load increment).
+struct NewtonLog {
+  double load_start = 0.0;  ///< load factor of the committed state the attempt starts from
+  double load_end = 0.0;    ///< load factor the attempt tries to reach
+  bool converged = false;
+  int iterations =
+      0;  ///< number of linear solves (0 if the first iterate already satisfied the test)
+  /// ||R_k|| over the free degrees of freedom, k = 0 .. iterations (one more entry than solves).
+  std::vector<double> residual_norms;
+  /// ||du_k|| of each Newton correction.
+  std::vector<double> update_norms;
+  double force_scale = 0.0;
+  MaterialStatus worst_status = MaterialStatus::kOk;
+  int n_unreliable_points = 0;
+  std::string message;  ///< why it did not converge (empty if it did)
+
+  /// ||R_{k+1}|| / ||R_k||, k = 0 .. iterations-1.
+  std::vector<double> residual_ratios() const;
+  /// ||R_{k+1}|| / ||R_k||^2 (scaled by force_scale so it is dimensionless): bounded for quadratic
+  /// convergence.
+  std::vector<double> quadratic_ratios() const;
+};
+
+/// The record of reaching one load target, possibly through several cut increments.
+struct StepReport {
+  bool converged = false;
+  double load_reached = 0.0;
+  int cuts = 0;                     ///< number of halvings during this step
+  std::vector<NewtonLog> attempts;  ///< every Newton solve, failed ones included
+  std::string message;
+  /// Newton iterations of the converged attempts, summed.
+  int total_iterations() const;
+};
+
+}  // namespace fe_model
+
+#endif  // FE_MODEL_SOLVER_OPTIONS_H_

@@ -1,0 +1,143 @@
+// The ACST adapter: calibration::update_with_tangent behind fe_model::Material.
+#include "fe_model/acst_material.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fe_model {
+namespace {
+
+Eigen::Matrix3d to_eigen(const SymmetricTensor2& t) {
+  Eigen::Matrix3d m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = t[i][j];
+  return m;
+}
+
+SymmetricTensor2 to_deal(const Eigen::Matrix3d& m) {
+  SymmetricTensor2 t;
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = i; j < 3; ++j) t[i][j] = 0.5 * (m(i, j) + m(j, i));
+  return t;
+}
+
+void pack(const Eigen::Matrix3d& m, std::vector<double>& v, std::size_t offset) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) v[offset + static_cast<std::size_t>(3 * i + j)] = m(i, j);
+}
+
+Eigen::Matrix3d unpack(const std::vector<double>& v, std::size_t offset) {
+  Eigen::Matrix3d m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = v[offset + static_cast<std::size_t>(3 * i + j)];
+  return m;
+}
+
+MaterialStatus convert(calibration::UpdateStatus status) {
+  switch (status) {
+    case calibration::UpdateStatus::kOk:
+      return MaterialStatus::kOk;
+    case calibration::UpdateStatus::kUnreliable:
+      return MaterialStatus::kUnreliable;
+    case calibration::UpdateStatus::kFailed:
+      return MaterialStatus::kFailed;
+  }
+  return MaterialStatus::kFailed;
+}
+
+}  // namespace
+
+AcstMaterial::AcstMaterial(const calibration::Parameters<double>& parameters,
+                           const AcstInitialState& initial_state,
+                           const calibration::IntegrationOptions& options)
+    : parameters_(parameters), initial_(initial_state), options_(options) {
+  if (!(initial_state.void_ratio > 0.0)) {
+    throw std::invalid_argument("AcstMaterial: initial void ratio must be positive");
+  }
+}
+
+calibration::State<double> AcstMaterial::to_model(const PointState& state) {
+  if (state.internal_variables.size() != kNumInternalVariables) {
+    throw std::logic_error("AcstMaterial: point state has " +
+                           std::to_string(state.internal_variables.size()) +
+                           " internal variables, expected 28 (not an ACST state?)");
+  }
+  calibration::State<double> model;
+  model.stress = -to_eigen(state.stress);  // tension positive -> compression positive
+  model.void_ratio = state.internal_variables[0];
+  model.alpha = unpack(state.internal_variables, 1);
+  model.alpha_in = unpack(state.internal_variables, 10);
+  model.fabric = unpack(state.internal_variables, 19);
+  return model;
+}
+
+void AcstMaterial::from_model(const calibration::State<double>& model,
+                              const SymmetricTensor2& strain, PointState& state) {
+  state.stress = -to_deal(model.stress);  // compression positive -> tension positive
+  state.strain = strain;
+  state.internal_variables.resize(kNumInternalVariables);
+  state.internal_variables[0] = model.void_ratio;
+  pack(model.alpha, state.internal_variables, 1);
+  pack(model.alpha_in, state.internal_variables, 10);
+  pack(model.fabric, state.internal_variables, 19);
+}
+
+PointState AcstMaterial::initial_state(const SymmetricTensor2& initial_stress) const {
+  calibration::State<double> model;
+  model.stress = -to_eigen(initial_stress);
+  model.void_ratio = initial_.void_ratio;
+  const double p = model.stress.trace() / 3.0;
+  const Eigen::Matrix3d deviator = model.stress - p * Eigen::Matrix3d::Identity();
+  model.alpha = p > 0.0 ? Eigen::Matrix3d(deviator / p) : Eigen::Matrix3d::Zero();
+  model.alpha_in = model.alpha;
+  model.fabric = initial_.fabric;
+  PointState state;
+  from_model(model, SymmetricTensor2(), state);
+  return state;
+}
+
+MaterialUpdate AcstMaterial::update(const PointState& start,
+                                    const SymmetricTensor2& strain_increment,
+                                    PointState& end) const {
+  const calibration::State<double> model_start = to_model(start);
+  calibration::State<double> model_end = model_start;
+  Eigen::Matrix<double, 9, 9> D;
+  const Eigen::Matrix3d increment = -to_eigen(strain_increment);  // -> compression positive
+  const calibration::UpdateStatus status =
+      calibration::update_with_tangent(parameters_, model_start, increment, model_end, D, options_);
+
+  MaterialUpdate result;
+  result.status = convert(status);
+  if (result.status == MaterialStatus::kFailed) {
+    result.message = "calibration::update_with_tangent failed";
+    end = start;  // never hand NaN to the caller
+    return result;
+  }
+  from_model(model_end, start.strain + strain_increment, end);
+  // D(3i+j, 3k+l) = d sigma_ij / d eps_kl, already symmetrised (contract); both signs flip, so
+  // the tension-positive tangent is the same. Average the minor-symmetric pairs for safety.
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = i; j < 3; ++j)
+      for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int l = k; l < 3; ++l) {
+          const auto row_ij = static_cast<Eigen::Index>(3 * i + j);
+          const auto row_ji = static_cast<Eigen::Index>(3 * j + i);
+          const auto col_kl = static_cast<Eigen::Index>(3 * k + l);
+          const auto col_lk = static_cast<Eigen::Index>(3 * l + k);
+          result.tangent[i][j][k][l] = 0.25 * (D(row_ij, col_kl) + D(row_ij, col_lk) +
+                                               D(row_ji, col_kl) + D(row_ji, col_lk));
+        }
+  if (result.status == MaterialStatus::kUnreliable) {
+    result.message = "calibration::update_with_tangent: unreliable (substepping tolerance not met)";
+  }
+  return result;
+}
+
+std::optional<double> AcstMaterial::fabric_invariant(const PointState& state) const {
+  if (state.internal_variables.size() != kNumInternalVariables) return std::nullopt;
+  const Eigen::Matrix3d F = unpack(state.internal_variables, 19);
+  const double c = std::sqrt(2.0 / 3.0);
+  return c * (F(2, 2) - 0.5 * (F(0, 0) + F(1, 1)));
+}
+
+}  // namespace fe_model

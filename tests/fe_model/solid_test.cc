@@ -1,0 +1,179 @@
+// deal.II-level tests of Solid: the patch test on a distorted mesh and the assembled tangent
+// against finite differences of the assembled residual.
+#include "fe_model/solid.h"
+
+#include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/full_matrix.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+#include "fe_model/material.h"
+#include "test_materials.h"
+
+namespace fe_model {
+namespace {
+
+using dealii::Point;
+using dealii::Tensor;
+
+// A 2x2x2 mesh of the unit cube with its inner vertex moved and its face-centre and edge-midpoint
+// vertices moved within their faces/edges, so no cell is a parallelepiped (non-constant Jacobian);
+// the outer faces stay planar and keep their colorized boundary ids 0..5.
+void make_distorted_cube(dealii::Triangulation<3>& triangulation) {
+  dealii::GridGenerator::subdivided_hyper_rectangle(triangulation, {2, 2, 2}, Point<3>(0, 0, 0),
+                                                    Point<3>(1, 1, 1), true);
+  std::vector<bool> moved(triangulation.n_vertices(), false);
+  for (const auto& cell : triangulation.active_cell_iterators()) {
+    for (const unsigned int v : cell->vertex_indices()) {
+      if (moved[cell->vertex_index(v)]) continue;
+      moved[cell->vertex_index(v)] = true;
+      Point<3>& x = cell->vertex(v);
+      // Offsets applied only along coordinates equal to 0.5 (interior directions of that vertex).
+      const Point<3> offset(0.12, -0.08, 0.1);
+      const Point<3> original = x;
+      for (unsigned int d = 0; d < 3; ++d) {
+        if (std::abs(original[d] - 0.5) < 1e-12) {
+          // vary the offset with the position so that the mesh is not a shifted grid
+          x[d] += offset[d] * (1.0 + 0.5 * original[(d + 1) % 3] - 0.3 * original[(d + 2) % 3]);
+        }
+      }
+    }
+  }
+}
+
+SymmetricTensor2 symmetric_part(const Tensor<2, 3>& g) { return dealii::symmetrize(g); }
+
+TEST(Solid, PatchTestReproducesConstantStrainAndStress) {
+  dealii::Triangulation<3> triangulation;
+  make_distorted_cube(triangulation);
+
+  Tensor<2, 3> G;  // displacement gradient of the linear field
+  const double g[3][3] = {{1.0, 2.0, -0.5}, {0.3, -1.0, 0.7}, {0.4, 0.2, 1.5}};
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j) G[i][j] = 1e-3 * g[i][j];
+  const Tensor<1, 3> translation({1e-4, -2e-4, 3e-4});
+  auto exact = [G, translation](const Point<3>& x) { return translation + G * x; };
+
+  const LinearElasticMaterial material(50e6, 0.3);
+  const SymmetricTensor2 initial_stress = -100e3 * dealii::unit_symmetric_tensor<3>();
+  Solid solid(triangulation, material, initial_stress);
+  for (dealii::types::boundary_id id = 0; id < 6; ++id) {
+    solid.add_displacement_condition(
+        {id, {{true, true, true}}, [exact](const Point<3>& x, double load) {
+           return load * exact(x);
+         }});
+  }
+  solid.setup();
+  const StepReport report = solid.advance_to(1.0);
+  ASSERT_TRUE(report.converged) << report.message;
+  EXPECT_EQ(report.total_iterations(), 1);
+
+  const SymmetricTensor2 strain = symmetric_part(G);
+  const SymmetricTensor2 stress = initial_stress + material.stiffness() * strain;
+  const SymmetricTensor2 stress_increment = material.stiffness() * strain;
+  double strain_error = 0.0, stress_error = 0.0;
+  solid.for_each_point([&](const Point<3>&, const PointState& state) {
+    strain_error = std::max(strain_error, (state.strain - strain).norm() / strain.norm());
+    stress_error = std::max(stress_error, (state.stress - stress).norm() / stress_increment.norm());
+  });
+  // Nodal displacements (the interior node included) equal the linear field.
+  std::vector<Point<3>> support(solid.dof_handler().n_dofs());
+  dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<3>(), solid.dof_handler(),
+                                               support);
+  double displacement_error = 0.0;
+  for (const auto& cell : solid.dof_handler().active_cell_iterators()) {
+    std::vector<dealii::types::global_dof_index> dofs(cell->get_fe().n_dofs_per_cell());
+    cell->get_dof_indices(dofs);
+    for (unsigned int i = 0; i < dofs.size(); ++i) {
+      const unsigned int component = cell->get_fe().system_to_component_index(i).first;
+      displacement_error =
+          std::max(displacement_error,
+                   std::abs(solid.solution()[dofs[i]] - exact(support[dofs[i]])[component]));
+    }
+  }
+  std::cout << "patch test: strain error " << strain_error << ", stress error " << stress_error
+            << ", nodal displacement error " << displacement_error
+            << " (relative to |G| = " << G.norm() << ")\n";
+  RecordProperty("strain_error", std::to_string(strain_error));
+  RecordProperty("stress_error", std::to_string(stress_error));
+  EXPECT_LT(strain_error, 1e-12);
+  EXPECT_LT(stress_error, 1e-12);
+  EXPECT_LT(displacement_error, 1e-14);
+}
+
+TEST(Solid, AssembledTangentMatchesFiniteDifferencesOfResidual) {
+  dealii::Triangulation<3> triangulation;
+  make_distorted_cube(triangulation);
+  const testing::HypoelasticTestMaterial material(0.01, 80.0);
+  SymmetricTensor2 initial_stress = -100e3 * dealii::unit_symmetric_tensor<3>();
+  initial_stress[2][2] = -150e3;
+  initial_stress[0][1] = 10e3;
+  Solid solid(triangulation, material, initial_stress);
+  // Tractions only (no Dirichlet condition): every degree of freedom is free.
+  solid.add_traction_condition({1, [](const Point<3>&, const Tensor<1, 3>& n, double load) {
+                                  return -(100e3 + 10e3 * load) * n;
+                                }});
+  solid.setup();
+
+  const unsigned int n = solid.dof_handler().n_dofs();
+  dealii::Vector<double> u(n);
+  for (unsigned int i = 0; i < n; ++i) u[i] = 1e-4 * std::sin(1.7 * i + 0.3);  // strains ~ 1e-3
+  ASSERT_EQ(solid.assemble(u, 0.5, true), MaterialStatus::kOk);
+  dealii::FullMatrix<double> analytic(n, n);
+  for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int j = 0; j < n; ++j) analytic(i, j) = solid.tangent_matrix().el(i, j);
+
+  const double h = 1e-8;
+  double max_error = 0.0, max_entry = 0.0, max_asymmetry = 0.0;
+  for (unsigned int j = 0; j < n; ++j) {
+    dealii::Vector<double> up = u, um = u;
+    up[j] += h;
+    um[j] -= h;
+    ASSERT_EQ(solid.assemble(up, 0.5, false), MaterialStatus::kOk);
+    const dealii::Vector<double> rp = solid.residual();
+    ASSERT_EQ(solid.assemble(um, 0.5, false), MaterialStatus::kOk);
+    const dealii::Vector<double> rm = solid.residual();
+    for (unsigned int i = 0; i < n; ++i) {
+      const double fd = (rp[i] - rm[i]) / (2.0 * h);
+      max_error = std::max(max_error, std::abs(fd - analytic(i, j)));
+      max_entry = std::max(max_entry, std::abs(analytic(i, j)));
+      max_asymmetry = std::max(max_asymmetry, std::abs(analytic(i, j) - analytic(j, i)));
+    }
+  }
+  const double relative = max_error / max_entry;
+  std::cout << "FE tangent vs central differences (" << n << " dofs, h = " << h
+            << "): max error / max entry = " << relative
+            << "; max |K - K^T| / max entry = " << max_asymmetry / max_entry << '\n';
+  RecordProperty("fd_tangent_error", std::to_string(relative));
+  EXPECT_LT(relative, 1e-6);
+  EXPECT_GT(max_asymmetry / max_entry, 1e-6);  // the test material's tangent is unsymmetric
+}
+
+TEST(Solid, RevertRestoresTheCommittedState) {
+  dealii::Triangulation<3> triangulation;
+  dealii::GridGenerator::hyper_cube(triangulation, 0.0, 1.0, true);
+  const LinearElasticMaterial material(10e6, 0.2);
+  Solid solid(triangulation, material, SymmetricTensor2());
+  solid.add_displacement_condition(
+      {4, {{true, true, true}}, [](const Point<3>&, double) { return Tensor<1, 3>(); }});
+  solid.add_displacement_condition({5, {{false, false, true}}, [](const Point<3>&, double load) {
+                                      return Tensor<1, 3>({0.0, 0.0, -1e-3 * load});
+                                    }});
+  solid.setup();
+  const NewtonLog log = solid.solve_increment(1.0);
+  ASSERT_TRUE(log.converged);
+  EXPECT_GT(solid.volume_averages().stress.norm(), 0.0);
+  solid.revert();
+  EXPECT_EQ(solid.solution().l2_norm(), 0.0);
+  EXPECT_EQ(solid.volume_averages().stress.norm(), 0.0);
+}
+
+}  // namespace
+}  // namespace fe_model
