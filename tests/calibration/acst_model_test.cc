@@ -15,13 +15,8 @@ namespace {
 
 using testing::toyoura;
 
-std::string scientific(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3e", x);
-  return buffer;
-}
-
-constexpr double kP0 = 100e3;
+using testing::kP0;
+using testing::scientific;
 
 double shear_modulus(const Parameters<double>& par, double p, double e) {
   return par.G0 * kAtmosphericPressure * (2.97 - e) * (2.97 - e) / (1.0 + e) *

@@ -16,13 +16,8 @@ namespace {
 
 using testing::toyoura;
 
-std::string scientific(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3e", x);
-  return buffer;
-}
-
-constexpr double kP0 = 100e3;
+using testing::kP0;
+using testing::scientific;
 
 double critical_void_ratio(const Parameters<double>& par, double p) {
   return par.e_gamma - par.lambda_c * std::pow(p / kAtmosphericPressure, par.xi);
