@@ -34,7 +34,7 @@ struct ParticleRecord {
   std::int32_t num_spheres = 1; ///< 1 for a sphere, 2 for a clump
   double sphere_diameter = 0.0; ///< diameter of each of its spheres [m]
   Vec3Record position{};        ///< centroid of the union of its spheres [m]
-  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0}; ///< unit quaternion (w, x, y, z)
+  std::array<double, 4> orientation{{1.0, 0.0, 0.0, 0.0}}; ///< unit quaternion (w, x, y, z)
   Vec3Record velocity{};        ///< [m/s]
   Vec3Record angular_velocity{};///< world frame [rad/s]
 };

@@ -2,7 +2,6 @@
 // and the strong/weak contact split. Pure functions of contact records.
 #pragma once
 
-#include <array>
 #include <vector>
 
 #include <Eigen/Core>
