@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace sffcal {
 
 struct CalibrateCommandOptions {
@@ -15,11 +19,19 @@ struct CalibrateCommandOptions {
   std::uint64_t seed = 1;        ///< seed of the extra starts
   std::string loss = "none";     ///< none | huber | cauchy
   int max_points = 60;           ///< series rows per test in the fit
-  bool verbose = false;          ///< Ceres progress
+  bool verbose = false;          ///< Ceres' own iteration table as well
+  /// Threads over tests (results do not depend on it); 0: OpenMP's default (OMP_NUM_THREADS,
+  /// else all cores).
+  int threads = 0;
+  std::vector<std::string> held_out;  ///< run files predicted with the fitted values, not fitted
 };
 
-/// Reads the run files (each needs /analysis/sff), calibrates, writes the outputs and prints the
-/// summary. Returns the exit status (errors are printed, never thrown).
+/// Adds the options added for issue 5 (--threads, --hold-out) to the calibrate subcommand.
+void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options);
+
+/// Reads the run files (each needs /analysis/sff), calibrates (printing a progress line per stage
+/// and per Ceres iteration, with the elapsed time), writes the outputs and prints the summary.
+/// Returns the exit status (errors are printed, never thrown).
 int calibrate_command(const std::vector<std::string>& run_paths,
                       const CalibrateCommandOptions& options, const std::string& command_line);
 

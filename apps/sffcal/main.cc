@@ -139,6 +139,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(3, 100000))
       ->capture_default_str();
   calibrate->add_flag("-v,--verbose", calibrate_options.verbose, "print the Ceres iterations");
+  sffcal::add_calibrate_options(*calibrate, calibrate_options);
 #endif
 
   CLI11_PARSE(app, argc, argv);

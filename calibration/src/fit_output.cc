@@ -46,17 +46,34 @@ void write_csv(const std::filesystem::path& path, const std::string& header,
   if (!out) throw std::runtime_error("write failed: '" + path.string() + "'");
 }
 
-}  // namespace
-
-std::string summary_markdown(const CalibrationResult& r) {
-  std::ostringstream s;
+void errors_table(std::ostringstream& s, const std::vector<TestErrors>& errors) {
   s << "| test | rows | snapshots | RMS q/p | max abs q/p | RMS eps_v | RMS e | RMS a_c | "
        "RMS normalised | model status |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const TestErrors& e : r.errors)
+  for (const TestErrors& e : errors)
     s << "| " << e.name << " | " << e.rows << " | " << e.snapshots << " | " << number(e.rms_eta)
       << " | " << number(e.max_abs_eta) << " | " << number(e.rms_volumetric) << " | "
       << number(e.rms_void_ratio) << " | " << number(e.rms_a_c) << " | "
       << number(e.rms_normalised) << " | " << e.status << " |\n";
+}
+
+Json errors_json(const std::vector<TestErrors>& errors) {
+  Json list = Json::array();
+  for (const TestErrors& e : errors)
+    list.push_back({{"test", e.name}, {"rms_eta", e.rms_eta}, {"max_abs_eta", e.max_abs_eta},
+                    {"rms_volumetric", e.rms_volumetric}, {"rms_void_ratio", e.rms_void_ratio},
+                    {"rms_a_c", e.rms_a_c}, {"status", e.status}});
+  return list;
+}
+
+}  // namespace
+
+std::string summary_markdown(const CalibrationResult& r) {
+  std::ostringstream s;
+  errors_table(s, r.errors);
+  if (!r.predictions.empty()) {
+    s << "\nHeld back from the fit (predicted with the fitted parameters):\n\n";
+    errors_table(s, r.predictions);
+  }
   s << "\n| parameter | value | standard error | lower | upper | at bound | stage |\n"
        "|---|---|---|---|---|---|---|\n";
   const auto& names = fit_parameter_names();
@@ -72,11 +89,16 @@ std::string summary_markdown(const CalibrationResult& r) {
   for (const auto& c : r.critical_states)
     s << "| " << c.test << " | " << number(c.p, 6) << " | " << number(c.void_ratio) << " | "
       << number(c.eta) << " | " << number(c.a_c) << " |\n";
-  s << "\nStages:\n\n| stage | free | residuals | starts | initial cost | final cost |\n"
-       "|---|---|---|---|---|---|\n";
+  s << "\nStages (time: wall seconds; evaluations of all tests, values only + with Jacobian):\n\n"
+       "| stage | free | residuals | starts | initial cost | final cost | iterations | "
+       "evaluations | substeps/step | time [s] | processor [s] |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const StageReport& st : r.stages)
     s << "| " << st.stage << " | " << st.free_parameters << " | " << st.residuals << " | "
       << st.starts << " | " << number(st.initial_cost) << " | " << number(st.final_cost)
+      << " | " << st.timing.iterations << " | " << st.timing.cost_evaluations << " + "
+      << st.timing.jacobian_evaluations << " | " << number(st.timing.substeps_per_step, 3)
+      << " | " << number(st.timing.seconds, 3) << " | " << number(st.timing.cpu_seconds, 3)
       << " |\n";
   s << "\nSFF strength relation eta = c1 a_c + c2 a_n + c3 mu m: ";
   if (r.sff.available) {
@@ -99,7 +121,8 @@ std::string write_calibration_outputs(const std::string& folder,
                                       const std::vector<TestData>& tests,
                                       const CalibrationResult& result, const FitOptions& options,
                                       const std::string& program_version,
-                                      const std::string& command_line) {
+                                      const std::string& command_line,
+                                      const std::vector<TestData>& held_out) {
   namespace fs = std::filesystem;
   fs::create_directories(folder);
   const auto& names = fit_parameter_names();
@@ -116,16 +139,26 @@ std::string write_calibration_outputs(const std::string& folder,
                 {"standard_error", acs.standard_error >= 0 ? Json(acs.standard_error) : Json()},
                 {"meaning", "critical-state norm of the DEM fabric tensor A; F = A / a_cs"}}}};
   Json inputs = Json::array();
-  for (const TestData& t : tests)
-    inputs.push_back({{"name", t.name}, {"source", t.source}, {"seed", t.seed},
-                      {"program_version", t.program_version}, {"p0_Pa", t.p0}, {"e0", t.e0},
-                      {"a_c0", t.a_c0}, {"friction", t.friction}});
+  auto add_inputs = [&](const std::vector<TestData>& list, bool fitted) {
+    for (const TestData& t : list)
+      inputs.push_back({{"name", t.name}, {"source", t.source}, {"seed", t.seed},
+                        {"program_version", t.program_version}, {"p0_Pa", t.p0}, {"e0", t.e0},
+                        {"a_c0", t.a_c0}, {"friction", t.friction}, {"fitted", fitted}});
+  };
+  add_inputs(tests, true);
+  add_inputs(held_out, false);
   Json stages = Json::array();
   for (const StageReport& s : result.stages)
     stages.push_back({{"stage", s.stage}, {"free_parameters", s.free_parameters},
                       {"residuals", s.residuals}, {"starts", s.starts},
                       {"initial_cost", s.initial_cost}, {"final_cost", s.final_cost},
-                      {"message", s.message}});
+                      {"message", s.message},
+                      {"seconds", s.timing.seconds},
+                      {"processor_seconds", s.timing.cpu_seconds},
+                      {"iterations", s.timing.iterations},
+                      {"cost_evaluations", s.timing.cost_evaluations},
+                      {"jacobian_evaluations", s.timing.jacobian_evaluations},
+                      {"substeps_per_step", s.timing.substeps_per_step}});
   const char* loss = options.loss == Loss::kHuber    ? "huber"
                      : options.loss == Loss::kCauchy ? "cauchy"
                                                      : "none";
@@ -139,6 +172,12 @@ std::string write_calibration_outputs(const std::string& folder,
                   {"loss_scale", options.loss_scale},
                   {"starts", options.starts},
                   {"seed", options.seed},
+                  {"max_points", options.max_points},
+                  {"max_iterations", options.max_iterations},
+                  {"function_tolerance", options.function_tolerance},
+                  {"threads", options.threads},
+                  {"fit_tolerance", options.driver.integration.tolerance},
+                  {"report_tolerance", options.report_driver.integration.tolerance},
                   {"residual_scales",
                    {{"eta", options.eta_scale},
                     {"volumetric_strain", options.volumetric_scale},
@@ -151,17 +190,17 @@ std::string write_calibration_outputs(const std::string& folder,
                              {"snapshots", result.sff.snapshots},
                              {"rms", result.sff.rms},
                              {"distance_from_2_5_2_5_3_5", result.sff.distance}};
-  Json errors = Json::array();
-  for (const TestErrors& e : result.errors)
-    errors.push_back({{"test", e.name}, {"rms_eta", e.rms_eta}, {"rms_volumetric", e.rms_volumetric},
-                      {"rms_void_ratio", e.rms_void_ratio}, {"rms_a_c", e.rms_a_c},
-                      {"status", e.status}});
-  extra["errors"] = errors;
+  extra["errors"] = errors_json(result.errors);
+  if (!result.predictions.empty()) extra["held_out_errors"] = errors_json(result.predictions);
   write_parameters_json(model_parameters(result.values), (fs::path(folder) / "parameters.json").string(),
                         annotations, extra.dump());
 
-  for (const TestData& t : tests) {
-    const ModelCurves c = simulate_test(t, result.values, options.driver);
+  std::vector<const TestData*> curves;
+  for (const TestData& t : tests) curves.push_back(&t);
+  for (const TestData& t : held_out) curves.push_back(&t);
+  for (const TestData* test : curves) {
+    const TestData& t = *test;
+    const ModelCurves c = simulate_test(t, result.values, options.report_driver);
     write_csv(fs::path(folder) / (t.name + "_curves.csv"),
               "axial_strain,dem_eta,model_eta,dem_volumetric_strain,model_volumetric_strain,"
               "dem_void_ratio,model_void_ratio",

@@ -98,6 +98,48 @@ TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
   }
 }
 
+TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
+  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
+  const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 21),
+                                       synthetic_test("loose", truth, 0.88, 0.1, 0.2, 22)};
+  FitOptions options;
+  options.stages = {Stage::kJoint};
+  options.starts = 1;
+  options.max_iterations = 3;
+  options.initial = truth;
+  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "k_F"};
+  options.initial[fit_parameter_index("h0")] *= 2.0;
+  options.initial[fit_parameter_index("n_d")] *= 0.6;
+  std::vector<std::string> lines;
+  options.progress = [&](const std::string& line) { lines.push_back(line); };
+  options.threads = 1;
+  const CalibrationResult one = calibrate(tests, options);
+  options.threads = 2;
+  const CalibrationResult two = calibrate(tests, options);
+  ASSERT_EQ(one.stages.size(), 1u);
+  EXPECT_LT(one.stages[0].final_cost, one.stages[0].initial_cost);
+  for (int i = 0; i < kNumFitParameters; ++i)
+    EXPECT_EQ(one.values[i], two.values[i]) << fit_parameter_names()[i];  // bit for bit
+  EXPECT_EQ(one.stages[0].final_cost, two.stages[0].final_cost);
+  // Progress: a line at the stage start, per iteration and at the end.
+  ASSERT_GE(lines.size(), 3u);
+  EXPECT_NE(lines.front().find("stage joint"), std::string::npos) << lines.front();
+  EXPECT_NE(lines[1].find("iteration 0"), std::string::npos) << lines[1];
+  int done = 0;
+  for (const std::string& line : lines) done += line.find("stage joint done") != std::string::npos;
+  EXPECT_EQ(done, 2);  // one per calibrate call (lines holds both runs)
+  EXPECT_GT(one.stages[0].timing.jacobian_evaluations, 0);
+  EXPECT_GT(one.stages[0].timing.substeps_per_step, 1.0);
+  // A held-out test is predicted at the fitted values, the same errors as test_errors.
+  CalibrationResult predicted = one;
+  predict({tests[1]}, options, predicted);
+  ASSERT_EQ(predicted.predictions.size(), 1u);
+  EXPECT_EQ(predicted.predictions[0].rms_eta, one.errors[1].rms_eta);
+  TestData bad = tests[0];
+  bad.eta[3] = std::nan("");
+  EXPECT_THROW(predict({bad}, options, predicted), std::runtime_error);
+}
+
 TEST(FitSffRelation, RecoversKnownCoefficients) {
   std::mt19937_64 random(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -74,10 +74,11 @@ double value_of(const ceres::Jet<U, N>& x) {
 }
 
 /// Strain-driven update: strain_increment is compression positive (de_v = tr > 0 compacts).
+/// If substeps is given, the substeps attempted (accepted or rejected) are added to it.
 template <typename T>
 UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
                           const Tensor<T>& strain_increment, State<T>& end,
-                          const IntegrationOptions& options = {});
+                          const IntegrationOptions& options = {}, long* substeps = nullptr);
 
 /// Consistent (algorithmic) tangent d(stress_end)/d(strain_increment), via Jets seeded on the
 /// 6 independent strain components; D(3*i+j, 3*k+l) = d sigma_ij / d eps_kl (symmetrised: the

@@ -429,7 +429,7 @@ double elastic_intersection(const Parameters<T>& par, const State<T>& start, con
 template <typename T>
 UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
                           const Tensor<T>& strain_increment, State<T>& end,
-                          const IntegrationOptions& options) {
+                          const IntegrationOptions& options, long* substeps) {
   end = start;
   if (!detail::is_finite(start) || !detail::is_finite(strain_increment)) return UpdateStatus::kFailed;
   if (!(value_of(start.stress.trace()) / 3.0 >= options.min_pressure)) return UpdateStatus::kFailed;
@@ -444,6 +444,7 @@ UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
 
   for (int attempts = 0; done < 1.0; ++attempts) {
     if (attempts >= options.max_substeps) return UpdateStatus::kFailed;
+    if (substeps) ++*substeps;
     step = std::min(step, 1.0 - done);
     const bool can_shrink = 0.5 * step >= min_step;
     const Tensor<T> deps = T(step) * segment;

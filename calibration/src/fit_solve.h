@@ -1,0 +1,34 @@
+// Internal to calibration_fit: one Ceres stage (several starts) over all tests
+// (docs/calibration.md, "Objective" and "Speed").
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fit_path.h"
+
+namespace calibration {
+namespace fit_detail {
+
+struct StageResult {
+  FitVector x;
+  double initial_cost = 0.0, final_cost = std::numeric_limits<double>::infinity();
+  int residuals = 0, starts_run = 0;
+  std::vector<double> errors;  // standard errors of the free parameters (empty: none)
+  double scale = 0.0;
+  std::string message;
+  StageTiming timing;          // summed over the starts
+};
+
+/// Levenberg-Marquardt on the residuals of spec over all tests, free parameters `free` (indices
+/// into FitVector), the others held at x0; `starts` starts (the first from x0, the others drawn
+/// from seed). Progress lines go to options.progress, prefixed by stage_name.
+StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Grid>& grids,
+                        const ResidualSpec& spec, const FitVector& x0, const std::vector<int>& free,
+                        const FitOptions& options, const FitVector& lower, const FitVector& upper,
+                        int starts, std::uint64_t seed, const std::string& stage_name);
+
+}  // namespace fit_detail
+}  // namespace calibration
