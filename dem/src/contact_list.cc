@@ -100,6 +100,11 @@ void ContactList::build_cell_grid(const Particles& particles, double cell_size) 
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
+  // A sparse scene (a few bodies in a large box) would need far more cells than spheres: coarser
+  // cells keep the grid small and still hold every candidate pair in neighbouring cells.
+  const double max_cells = 64.0 * std::max(ns, 1) + 1024.0;
+  const Eigen::Vector3d extent = (hi - lo).array() + cell_size;
+  cell_size = std::max(cell_size, std::cbrt(extent.prod() / max_cells));
   cell_size_ = cell_size;
   grid_origin_ = lo;
   std::int64_t num_cells = 1;
@@ -107,10 +112,6 @@ void ContactList::build_cell_grid(const Particles& particles, double cell_size) 
     dims_[k] = std::max(1, static_cast<int>((hi[k] - lo[k]) / cell_size) + 1);
     num_cells *= dims_[k];
   }
-  if (num_cells > 64LL * std::max(ns, 1) + 1024)
-    throw std::runtime_error(
-        "ContactList: the spheres are spread over far more cells than there are spheres; "
-        "bodies have escaped the box or the run blew up");
   sphere_cell_.resize(ns);
   cell_start_.assign(static_cast<std::size_t>(num_cells) + 1, 0);
   for (int s = 0; s < ns; ++s) {

@@ -70,6 +70,7 @@ Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactPara
       options_(std::move(options)) {
   initialise();
   particles_.update_sphere_positions();
+  refuse_deep_initial_overlaps();
 }
 
 Simulation::Simulation(SimulationState state, ContactParameters contact,
@@ -157,6 +158,41 @@ void Simulation::initialise() {
   wall_force_.assign(walls_.size(), 0.0);
   wall_stiffness_.assign(walls_.size(), 0.0);
   wall_last_move_.assign(walls_.size(), 0.0);
+}
+
+void Simulation::refuse_deep_initial_overlaps() const {
+  // An input overlap beyond the limit would stop the first step as "unstable"; say instead which
+  // bodies the input put inside each other. Shallower overlaps are pushed apart by the dynamics.
+  ContactList candidates;
+  candidates.build(particles_, walls_, skin_, nullptr, options_.min_parallel_items);
+  const Particles& P = particles_;
+  const double limit = options_.max_overlap_ratio;
+  auto refuse = [&](const std::string& what, double ratio) {
+    std::ostringstream msg;
+    msg << "Simulation: " << what << " overlap by " << ratio
+        << " of the smaller sphere radius at the start (limit max_overlap_ratio " << limit
+        << "); move them apart or make them smaller";
+    throw std::invalid_argument(msg.str());
+  };
+  for (int p = 0; p < candidates.num_pairs(); ++p) {
+    const int i = candidates.pair_i[p], j = candidates.pair_j[p];
+    const double ri = P.sphere_radius[i], rj = P.sphere_radius[j];
+    const double ratio =
+        (ri + rj - (P.sphere_position[j] - P.sphere_position[i]).norm()) / std::min(ri, rj);
+    if (ratio > limit)
+      refuse("bodies " + std::to_string(P.id[P.sphere_body[i]]) + " and " +
+                 std::to_string(P.id[P.sphere_body[j]]),
+             ratio);
+  }
+  for (int k = 0; k < candidates.num_wall_candidates(); ++k) {
+    const int s = candidates.wall_sphere[k], w = candidates.wall_index[k];
+    const Wall& wall = walls_[w];
+    const double along = P.sphere_position[s][wall.axis] - wall.position;
+    const double ratio = 1.0 - (wall.upper ? -along : along) / P.sphere_radius[s];
+    if (ratio > limit)
+      refuse("body " + std::to_string(P.id[P.sphere_body[s]]) + " and wall " + std::to_string(w),
+             ratio);
+  }
 }
 
 void Simulation::find_box_walls() {
@@ -272,14 +308,35 @@ void Simulation::compute_pair_forces() {
     slots_[p].sliding = sliding;
     worst_ratio = std::max(worst_ratio, overlap / std::min(ri, rj));
   }
-  if (worst_ratio > options_.max_overlap_ratio) {
-    std::ostringstream msg;
-    msg << "unstable run at step " << step_count_ << ": an overlap reached " << worst_ratio
-        << " of the sphere radius (limit " << options_.max_overlap_ratio << "); time step " << dt_
-        << " s, critical step " << critical_dt_
-        << " s. Reduce the time step or the loading rate, or raise the stiffness.";
-    throw std::runtime_error(msg.str());
+  if (worst_ratio > options_.max_overlap_ratio) report_deep_overlap(worst_ratio);
+}
+
+void Simulation::report_deep_overlap(double worst_ratio) const {
+  // The pair to name, found again serially (this runs once, when the run stops).
+  const Particles& P = particles_;
+  const ContactList& C = contacts_;
+  int worst = 0;
+  double largest = -1.0;
+  for (int p = 0; p < C.num_pairs(); ++p) {
+    const double ratio =
+        slots_[p].overlap / std::min(P.sphere_radius[C.pair_i[p]], P.sphere_radius[C.pair_j[p]]);
+    if (ratio > largest) largest = ratio, worst = p;
   }
+  std::ostringstream msg;
+  msg << "unstable run at step " << step_count_ << ": bodies "
+      << P.id[P.sphere_body[C.pair_i[worst]]] << " and " << P.id[P.sphere_body[C.pair_j[worst]]] << " overlap by " << worst_ratio
+      << " of the smaller sphere radius (limit max_overlap_ratio " << options_.max_overlap_ratio
+      << "); time step " << dt_ << " s, critical step " << critical_dt_ << " s.";
+  double stress = 0.0;
+  if (has_box())
+    for (int w = 0; w < 6; ++w) stress += wall_force_[w] / wall_area(w) / 6.0;
+  if (stress > 0.0) {
+    msg << " The walls carry a mean stress of " << stress << " Pa (E / stress = "
+        << contact_.youngs_modulus / stress << ").";
+  }
+  msg << " Either the run is unstable (reduce the time step or the loading rate) or the grains "
+         "are too soft for the stress they carry (raise youngs_modulus or lower the pressure).";
+  throw std::runtime_error(msg.str());
 }
 
 template <bool kWallFriction, bool kViscous>

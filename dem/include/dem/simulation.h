@@ -150,6 +150,12 @@ class Simulation {
   void schedule_rebuild_if_needed();
   void find_box_walls();
   void initialise();  ///< validation, features, critical step, scratch arrays
+  /// Throws std::invalid_argument naming the bodies (or body and wall) of an initial overlap
+  /// beyond max_overlap_ratio.
+  void refuse_deep_initial_overlaps() const;
+  /// Throws the "unstable run" error for an overlap beyond the limit, naming the bodies and the
+  /// stress on the walls.
+  [[noreturn]] void report_deep_overlap(double worst_ratio) const;
 
   Particles particles_;
   std::vector<Wall> walls_;
