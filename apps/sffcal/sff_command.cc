@@ -91,6 +91,9 @@ int sff_command(const std::vector<std::string>& run_paths, const SffCommandOptio
     file.write_table("sff", columns, rows);
     file.write_table("sff_checks", check_columns, check_rows);
     file.write_table("sff_rose", rose_columns, rose_rows);
+    // The bootstrap columns of sff_checks depend on these: kept so the tables can be reproduced.
+    file.write_note("sff_bootstrap", "resamples " + std::to_string(options.resamples) + ", seed " +
+                                         std::to_string(options.seed));
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::string stem = path;
