@@ -4,4 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install_deps.sh
 ./scripts/build.sh
+# CTest runs nproc tests at once, each with OpenMP on every core: idle OpenMP threads must sleep,
+# not spin, or the oversubscribed cores spend their time spinning.
+export OMP_WAIT_POLICY=PASSIVE
 ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600

@@ -240,9 +240,10 @@ std::optional<double> read_fabric_normalisation(const std::string& parameter_pat
   };
   if (!root.is_object()) return std::nullopt;
   if (root.contains("a_cs")) return value_of(root["a_cs"], "a_cs");
-  if (root.contains("parameters") && root["parameters"].is_object() &&
-      root["parameters"].contains("a_cs"))
-    return value_of(root["parameters"]["a_cs"], "parameters.a_cs");
+  // `sffcal calibrate` writes it under fabric_normalisation; hand-written files may use either.
+  for (const char* group : {"fabric_normalisation", "parameters"})
+    if (root.contains(group) && root[group].is_object() && root[group].contains("a_cs"))
+      return value_of(root[group]["a_cs"], std::string(group) + ".a_cs");
   return std::nullopt;
 }
 

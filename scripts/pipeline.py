@@ -1,0 +1,236 @@
+#!/usr/bin/python3
+"""The main job, end to end: prepare specimens, shear them in drained triaxial compression, analyse
+them with SFF, calibrate the ACST model, run the deal.II element checks, write a report.
+
+usage: scripts/pipeline.py [--scene FILE | --matrix] [-o OUT] [--only STAGE[,STAGE] | --from STAGE]
+                           [--force] [--sffcal PATH] [--jobs N]
+
+Stages, in order: prepare, triaxial, sff, calibrate, fe-check, report. Each declares the files it
+reads and writes; one whose inputs are unchanged since its last run (and whose outputs exist) is
+skipped and says so. The scene (default examples/main_scene.toml; --matrix:
+examples/matrix_scene.toml, the paper-size matrix) names the specimens. Outputs under OUT
+(default out/main): configs/, specimens/, runs/, vtk/, sff/, calibrate/, fe_check/, logs/ and
+report/report.md (+ report.html). See docs/pipeline.md.
+"""
+import argparse
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+import time
+import tomllib
+
+from pipeline_tasks import Runner, StageFailed, Task
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+STAGES = ["prepare", "triaxial", "sff", "calibrate", "fe-check", "report"]
+PY = sys.executable
+
+
+def load_make_configs():
+    """bench/matrix/make_configs.py as a module: the matrix's specimen names and set_key."""
+    path = os.path.join(ROOT, "bench", "matrix", "make_configs.py")
+    spec = importlib.util.spec_from_file_location("make_configs", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+MAKE_CONFIGS = load_make_configs()
+
+
+def read_scene(path):
+    try:
+        with open(path, "rb") as f:
+            scene = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise StageFailed(f"scene {path}: {e}")
+    known = [name for name, _ in MAKE_CONFIGS.matrix()]
+    for key in ("calibrate_on", "held_back"):
+        for name in scene.get(key, []):
+            if name not in known:
+                raise StageFailed(f"scene {path}: {key} names '{name}', not a specimen of the matrix "
+                                  f"(bench/matrix/make_configs.py): {', '.join(known)}")
+    if not scene.get("calibrate_on"):
+        raise StageFailed(f"scene {path}: 'calibrate_on' must name at least one specimen")
+    if scene.get("matrix") and (scene.get("dem") or scene.get("seed", 1) != 1):
+        raise StageFailed(f"scene {path}: a matrix scene takes run_matrix.sh's configs as they are "
+                          "(seed 1, no [dem] keys)")
+    scene["specimens"] = known if scene.get("matrix") else scene["calibrate_on"] + scene.get("held_back", [])
+    return scene
+
+
+class Pipeline:
+    def __init__(self, args, scene, runner):
+        self.args, self.scene, self.runner = args, scene, runner
+        self.out = args.output
+        self.sffcal = args.sffcal
+
+    def path(self, *parts):
+        return os.path.join(self.out, *parts)
+
+    def run_file(self, name):
+        return self.path("runs", name + ".h5")
+
+    def write_configs(self):
+        """Specimen configs from make_configs.py plus the scene's [dem] keys (cheap, every start;
+        the records compare contents, so rewriting an unchanged config reruns nothing)."""
+        folder = self.path("configs")
+        subprocess.run([PY, os.path.join(ROOT, "bench", "matrix", "make_configs.py"), folder,
+                        "--bodies", str(self.scene.get("bodies", 400)),
+                        "--seed", str(self.scene.get("seed", 1))], check=True, stdout=subprocess.DEVNULL)
+        for name in self.scene["specimens"]:
+            path = os.path.join(folder, name + ".toml")
+            text = open(path).read()
+            for key, value in self.scene.get("dem", {}).items():
+                try:
+                    text = MAKE_CONFIGS.set_key(text, key, value)
+                except SystemExit as e:  # make_configs.py's own error: the key is unknown
+                    raise StageFailed(f"scene {self.args.scene}: [dem] {e}")
+            with open(path, "w") as f:
+                f.write(text)
+
+    def tasks(self, stage):
+        """The tasks of one stage: inputs, outputs and commands."""
+        names = self.scene["specimens"]
+        runs = [self.run_file(n) for n in names]
+        fitted = [self.run_file(n) for n in self.scene["calibrate_on"]]
+        checked = fitted + [self.run_file(n) for n in self.scene.get("held_back", [])]
+        made_by_triaxial = {r: "triaxial" for r in runs}
+        if stage == "prepare":
+            if self.scene.get("matrix"):
+                return []  # run_matrix.sh prepares and shears in one `sffcal dem`
+            self.write_configs()
+            return [Task(stage, n, [self.path("configs", n + ".toml")], [self.path("specimens", n + ".h5")],
+                         [[self.sffcal, "prepare", "-c", self.path("configs", n + ".toml"),
+                           "-o", self.path("specimens", n + ".h5")]]) for n in names]
+        if stage == "triaxial":
+            if self.scene.get("matrix"):
+                script = os.path.join(ROOT, "bench", "matrix", "run_matrix.sh")
+                return [Task(stage, "matrix", [script, MAKE_CONFIGS.TEMPLATE], runs,
+                             # absolute: run_matrix.sh works from the repository root
+                             [[script, os.path.abspath(self.path("runs")), str(self.runner.jobs),
+                               str(self.scene["bodies"])]],
+                             options=str(self.scene["bodies"]))]
+            self.write_configs()
+            tasks = []
+            for n in names:
+                config, specimen, run = self.path("configs", n + ".toml"), self.path("specimens", n + ".h5"), self.run_file(n)
+                vtk = self.path("vtk", n)
+                tasks.append(Task(stage, n, [config, specimen],
+                                  [run, self.path("runs", n + ".png"), os.path.join(vtk, "spheres.pvd")],
+                                  [[self.sffcal, "triaxial", "-c", config, "-s", specimen, "-o", run],
+                                   [PY, os.path.join(ROOT, "bench", "reference", "plot_triaxial.py"),
+                                    run, self.path("runs", n + ".png")],
+                                   [self.sffcal, "vtk", run, "-o", vtk]],  # snapshots for ParaView
+                                  made_by={specimen: "prepare"}))
+            return tasks
+        if stage == "sff":
+            sff = self.path("sff")
+            return [Task(stage, "all", runs,
+                         [os.path.join(sff, n + ".h5.sff.csv") for n in names] + [os.path.join(sff, "anisotropy.png")],
+                         [[self.sffcal, "sff", *runs, "-o", sff],
+                          [PY, os.path.join(ROOT, "scripts", "plot_sff.py"), *runs, "-o", sff]],
+                         made_by=made_by_triaxial)]
+        if stage == "calibrate":
+            fit = self.path("calibrate")
+            return [Task(stage, "fit", fitted, [os.path.join(fit, "parameters.json"), os.path.join(fit, "summary.md")],
+                         [[self.sffcal, "calibrate", *fitted, "-o", fit,
+                           *self.scene.get("calibrate", {}).get("options", [])],
+                          [PY, os.path.join(ROOT, "scripts", "plot_calibration.py"), fit]],
+                         made_by=made_by_triaxial)]
+        if stage == "fe-check":
+            params, check = self.path("calibrate", "parameters.json"), self.path("fe_check")
+            dem = [a for r in checked for a in ("--dem", r)]
+            return [Task(stage, "check", [params] + checked,
+                         [os.path.join(check, "summary.csv"), os.path.join(check, "fe_check.png")],
+                         [[self.sffcal, "fe-check", "--parameters", params, *dem, "-o", check,
+                           *self.scene.get("fe_check", {}).get("options", [])],
+                          [PY, os.path.join(ROOT, "scripts", "plot_fe_check.py"), check]],
+                         check_codes=(1, 2),  # 2: FE vs DEM off; 1: also a verification check or a run
+                         made_by={params: "calibrate", **made_by_triaxial})]
+        if stage == "report":
+            # whatever the earlier stages left: the report covers what exists
+            inputs = [p for p in [self.args.scene] + runs
+                      + [self.path("calibrate", "summary.md"), self.path("fe_check", "summary.csv")]
+                      + [self.path(".records", s, "_stage.json") for s in STAGES[:-1]] if os.path.exists(p)]
+            return [Task(stage, "report", inputs,
+                         [self.path("report", "report.md"), self.path("report", "report.html")],
+                         [[PY, os.path.join(ROOT, "scripts", "pipeline_report.py"), self.out,
+                           "--scene", self.args.scene]])]
+        raise ValueError(stage)
+
+
+def selected_stages(args):
+    if args.only:
+        chosen = args.only.split(",")
+        for stage in chosen:
+            if stage not in STAGES:
+                raise StageFailed(f"--only: unknown stage '{stage}' (stages: {', '.join(STAGES)})")
+        return [s for s in STAGES if s in chosen]
+    if args.start:
+        if args.start not in STAGES:
+            raise StageFailed(f"--from: unknown stage '{args.start}' (stages: {', '.join(STAGES)})")
+        return STAGES[STAGES.index(args.start):]
+    return STAGES
+
+
+def main():
+    title, _, *rest = __doc__.split("\n\n")  # the usage paragraph is argparse's own
+    parser = argparse.ArgumentParser(description="\n\n".join([title] + rest),
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--scene", help="scene file (default examples/main_scene.toml)")
+    parser.add_argument("--matrix", action="store_true",
+                        help="the paper-size matrix: --scene examples/matrix_scene.toml, -o out/main-matrix")
+    parser.add_argument("-o", "--output", help="output folder (default out/main)")
+    parser.add_argument("--only", help="run only these stages (comma separated)")
+    parser.add_argument("--from", dest="start", help="run this stage and the later ones")
+    parser.add_argument("--force", action="store_true", help="rerun the selected stages even if up to date")
+    parser.add_argument("--sffcal", default=os.environ.get("SFFCAL", os.path.join(ROOT, "build", "sffcal")),
+                        help="the sffcal binary (default $SFFCAL, else build/sffcal)")
+    parser.add_argument("--jobs", type=int, help="tasks at once (default: the scene's jobs)")
+    args = parser.parse_args()
+    args.scene = args.scene or os.path.join(ROOT, "examples", "matrix_scene.toml" if args.matrix else "main_scene.toml")
+    args.output = args.output or os.path.relpath(os.path.join(ROOT, "out", "main-matrix" if args.matrix else "main"))
+    os.makedirs(args.output, exist_ok=True)
+
+    start = time.monotonic()
+    log_file = open(os.path.join(args.output, "pipeline.log"), "a")
+
+    def log(text):
+        elapsed = time.monotonic() - start
+        line = f"{int(elapsed // 60):3d}:{int(elapsed % 60):02d} {text}"
+        print(line, flush=True)
+        log_file.write(line + "\n")
+        log_file.flush()
+
+    try:
+        scene = read_scene(args.scene)
+        stages = selected_stages(args)
+        if not os.access(args.sffcal, os.X_OK) and any(s != "report" for s in stages):
+            raise StageFailed(f"sffcal binary {args.sffcal} not found: build it (scripts/build.sh) "
+                              "or pass --sffcal PATH / set SFFCAL")
+        runner = Runner(args.output, args.jobs or scene.get("jobs", 1), args.force, log)
+        pipeline = Pipeline(args, scene, runner)
+        log(f"scene {args.scene}: {len(scene['specimens'])} specimens, output {args.output}, "
+            f"stages {', '.join(stages)}")
+        for stage in stages:
+            log(f"== {stage} ==")
+            runner.run_stage(stage, pipeline.tasks(stage))
+    except StageFailed as e:
+        log(str(e))
+        log("pipeline stopped; the later stages did not run")
+        return 1
+    except KeyboardInterrupt:
+        log("interrupted; the task that was running reruns next time")
+        return 130
+    for warning in runner.warnings:
+        log("WARNING " + warning)
+    log(f"pipeline finished in {time.monotonic() - start:.0f} s; report: "
+        f"{os.path.join(args.output, 'report', 'report.md')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

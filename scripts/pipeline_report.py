@@ -1,0 +1,265 @@
+#!/usr/bin/python3
+"""The report of the main job: OUT/report/report.md (and the same page as report.html) with the
+plots and tables the pipeline's stages left in OUT (scripts/pipeline.py). A stage that has not
+run yet leaves its section saying so.
+
+usage: pipeline_report.py OUT --scene SCENE.toml
+"""
+import argparse
+import csv
+import datetime
+import glob
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tomllib
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+STAGES = ["prepare", "triaxial", "sff", "calibrate", "fe-check"]
+
+
+class Page:
+    def __init__(self, out):
+        self.out, self.lines = out, []
+        self.folder = os.path.join(out, "report")
+        os.makedirs(os.path.join(self.folder, "img"), exist_ok=True)
+
+    def add(self, *lines):
+        self.lines.extend(lines)
+        self.lines.append("")
+
+    def table(self, header, rows):
+        self.add("| " + " | ".join(header) + " |", "|" + "---|" * len(header),
+                 *["| " + " | ".join(str(c) for c in row) + " |" for row in rows])
+
+    def image(self, path, caption):
+        """Copies the PNG into report/img (the folder stands alone) and embeds it."""
+        if not os.path.exists(path):
+            self.add(f"*{caption}: not made yet ({os.path.relpath(path, self.out)} missing).*")
+            return
+        name = os.path.relpath(path, self.out).replace(os.sep, "_")
+        shutil.copyfile(path, os.path.join(self.folder, "img", name))
+        self.add(f"![{caption}](img/{name})", f"*{caption}*")
+
+
+def stage_times(out):
+    rows, total = [], 0.0
+    for stage in STAGES:
+        path = os.path.join(out, ".records", stage, "_stage.json")
+        tasks = sorted(glob.glob(os.path.join(out, ".records", stage, "[!_]*.json")))
+        if not os.path.exists(path):
+            rows.append((stage, "-", "not run"))
+            continue
+        with open(path) as f:
+            record = json.load(f)
+        total += record["seconds"]
+        per_task = []
+        for task in tasks:
+            with open(task) as f:
+                per_task.append(f"{os.path.basename(task)[:-5]} {json.load(f)['seconds']:.0f} s")
+        rows.append((stage, f"{record['seconds']:.1f}", "; ".join(per_task)))
+    return rows, total
+
+
+def run_row(path, role):
+    with h5py.File(path, "r") as f:
+        s = f["series"]
+        eps_a, eta, e = s["axial_strain"][:], s["eta"][:], s["void_ratio"][:]
+        eps_v, sigma3 = s["volumetric_strain"][:], s["sigma_3"][:]
+        inertial = s["inertial_number"][:]
+        config = f.attrs.get("config", "")
+        config = config.decode() if isinstance(config, bytes) else config
+    bodies = re.search(r"^bodies\s*=\s*(\d+)", config, re.M)
+    last = eps_a >= eps_a[-1] - 0.05  # the last 5 % of axial strain
+    k = int(np.argmax(eta))
+    return (os.path.basename(path)[:-3], role, bodies.group(1) if bodies else "?", f"{sigma3[0] / 1e3:.0f}", f"{e[0]:.3f}",
+            f"{eta[k]:.3f} at {100 * eps_a[k]:.1f} %", f"{eta[last].mean():.3f}", f"{e[last].mean():.3f}",
+            f"{100 * eps_v[-1]:.1f}", f"{100 * eps_a[-1]:.1f}", f"{inertial.max():.1e}", f"{eta.min():.2f}")
+
+
+def csv_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.reader(line for line in f if not line.startswith("#")))
+
+
+def run_status(log):
+    """The case headers and the driver/element/mesh end lines of a fe-check log."""
+    if not os.path.exists(log):
+        return []
+    with open(log, errors="replace") as f:
+        return [line.rstrip() for line in f if re.match(r"^case \S+: ", line)
+                or re.match(r"^\s+(driver|element|mesh)\s+(completed|STOPPED)", line)
+                or re.match(r"^\s+material-point driver:|^\s+.*failed at", line)]
+
+
+def demote(markdown):
+    """Headings of an embedded page one level down."""
+    return re.sub(r"^(#+) ", r"\1## ", markdown, flags=re.M)
+
+
+def write_markdown(out, scene_path):
+    with open(scene_path, "rb") as f:
+        scene = tomllib.load(f)
+    fitted, held = scene.get("calibrate_on", []), scene.get("held_back", [])
+    runs = sorted(p for p in glob.glob(os.path.join(out, "runs", "*.h5"))
+                  if not p.endswith(".specimen.h5"))  # `sffcal dem` (matrix) leaves its specimen there
+    role = {n: "calibration" for n in fitted} | {n: "held back" for n in held}
+    page = Page(out)
+    page.add("# sffcal main job: report",
+             f"Scene `{os.path.relpath(scene_path)}`, output `{out}`, written "
+             f"{datetime.datetime.now().isoformat(timespec='seconds')} on {os.cpu_count()} cores. "
+             "Made by `scripts/pipeline.py` (docs/pipeline.md); units SI, compression positive.")
+
+    page.add("## Timing of the stages",
+             "Wall-clock seconds of each stage's last run (a skipped stage keeps the time of the run "
+             "that made its outputs); tasks of one stage run in parallel, so their times overlap.")
+    rows, total = stage_times(out)
+    page.table(["stage", "wall-clock [s]", "tasks"], rows)
+    page.add(f"Sum over the stages: {total:.0f} s ({total / 60:.1f} min).")
+
+    page.add("## DEM triaxial tests",
+             "Drained triaxial compression (σ3 held by the lateral servo walls, platens at a constant "
+             "strain rate). Peak and end q/p from the walls; end values are means over the last 5 % of "
+             "axial strain; ε_v compression positive; I = the largest inertial number (quasi-static below 1e-3).")
+    if runs:
+        rows = [run_row(r, role.get(os.path.basename(r)[:-3], "analysed only")) for r in runs]
+        page.table(["specimen", "role", "clumps", "σ3 [kPa]", "e0", "peak q/p", "end q/p", "end e",
+                    "end ε_v [%]", "end ε_a [%]", "max I", "min q/p"], rows)
+        unstable = [row[0] for row in rows if float(row[-1]) < -0.05]
+        if unstable:
+            page.add(f"**Note:** q/p falls below zero early in the shearing of {', '.join(unstable)} "
+                     "(lateral stress above the axial one): most likely the packing is not stable once the "
+                     "friction changes from its compaction value to the shearing value; its first strain "
+                     "increments are a collapse (see ε_v), not a quasi-static drained path.")
+        overview = os.path.join(out, "report", "triaxial_all.png")
+        solid = [r for r in runs if os.path.basename(r)[:-3] not in held]
+        subprocess.run([sys.executable, os.path.join(HERE, "plot_runs.py"), *solid, "-o", overview,
+                        "--held-back", *[r for r in runs if r not in solid]], check=True)
+        page.add("![q/p, volumetric strain and void ratio of every specimen](triaxial_all.png)",
+                 "*Stress ratio, volumetric strain and void ratio against axial strain (dashed: held back).*")
+        for r in runs:
+            page.image(r[:-3] + ".png", f"{os.path.basename(r)[:-3]}: q/p from walls and contacts, ε_v, e")
+    else:
+        page.add("*No run files yet (stage triaxial).*")
+
+    page.add("## SFF analysis",
+             "Per specimen (`sffcal sff`, docs/sff.md): stress ratio and the SFF prediction at the "
+             "peak and the last snapshot, with the anisotropies of contact normals a_c, normal forces "
+             "a_n and the mobilisation m.")
+    analysed = [r for r in runs if os.path.exists(os.path.join(out, "sff", os.path.basename(r) + ".sff.csv"))]
+    if analysed:
+        table = subprocess.run([sys.executable, os.path.join(HERE, "sff_table.py"), *analysed],
+                               check=True, capture_output=True, text=True).stdout
+        page.add(table.strip())
+        page.image(os.path.join(out, "sff", "anisotropy.png"), "a_c, a_n and m against axial strain")
+        for r in analysed:
+            stem = os.path.basename(r)[:-3]
+            page.image(os.path.join(out, "sff", stem + "_eta.png"), f"{stem}: SFF decomposition of q/p")
+            page.image(os.path.join(out, "sff", stem + "_rose.png"),
+                       f"{stem}: rose diagrams of contact normals and mean normal force (initial, peak, last)")
+    else:
+        page.add("*Not analysed yet (stage sff).*")
+
+    page.add("## Calibration of the ACST model",
+             f"Fitted (`sffcal calibrate`, docs/calibration.md) on {', '.join(fitted)}; "
+             f"options {' '.join(scene.get('calibrate', {}).get('options', [])) or 'none'}. "
+             "The summary as written by the fit:")
+    summary = os.path.join(out, "calibrate", "summary.md")
+    if os.path.exists(summary):
+        page.add(demote(open(summary).read().strip()))
+        for png in sorted(glob.glob(os.path.join(out, "calibrate", "*_calibration.png"))):
+            page.image(png, f"{os.path.basename(png)[:-16]}: model (lines) against DEM (points)")
+    else:
+        page.add("*Not calibrated yet (stage calibrate).*")
+
+    page.add("## FE element checks against the driver and the DEM",
+             "`sffcal fe-check` (docs/fe.md) with the calibrated parameters: one Q1 element against "
+             "the material-point driver (must agree to 1e-8), and against every DEM specimen, "
+             f"including the one(s) held back from the fit ({', '.join(held) or 'none'}): a prediction.")
+    fe = os.path.join(out, "fe_check", "summary.csv")
+    if os.path.exists(fe):
+        rows = csv_rows(fe)
+        page.table(rows[0], [[f"**{c}**" if c == "fail" else c for c in row] for row in rows[1:]])
+        status = run_status(os.path.join(out, "logs", "fe-check_check.log"))
+        if status:
+            page.add("How each run ended (from the fe-check log):", "```", *status, "```")
+        page.image(os.path.join(out, "fe_check", "fe_check.png"),
+                   "q/p, ε_v and F:n_c: DEM, driver, FE element (one row per case)")
+    else:
+        page.add("*Not checked yet (stage fe-check).*")
+
+    page.add("## Logs", "Every task's output: `logs/<stage>_<task>.log`; the pipeline's own: `pipeline.log`.")
+    return "\n".join(page.lines)
+
+
+def inline_html(text):
+    text = html.escape(text, quote=False)
+    text = re.sub(r"`([^`]+)`", r"<code>\1</code>", text)
+    text = re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", text)
+    return re.sub(r"\*([^*]+)\*", r"<i>\1</i>", text)
+
+
+def to_html(markdown):
+    """The small Markdown subset this page uses: headings, tables, images, lists, paragraphs."""
+    body, table, pre = [], None, None
+    for line in markdown.splitlines() + [""]:
+        if line == "```":
+            if pre is None:
+                pre = []
+            else:
+                body.append("<pre>" + html.escape("\n".join(pre)) + "</pre>")
+                pre = None
+            continue
+        if pre is not None:
+            pre.append(line)
+            continue
+        if line.startswith("|"):
+            cells = [c.strip().replace("\\|", "|") for c in re.split(r"(?<!\\)\|", line.strip()[1:-1])]
+            if table is None:
+                table = ["<table><tr>" + "".join(f"<th>{inline_html(c)}</th>" for c in cells) + "</tr>"]
+            elif not set("".join(cells)) <= set("-: "):
+                table.append("<tr>" + "".join(f"<td>{inline_html(c)}</td>" for c in cells) + "</tr>")
+            continue
+        if table is not None:
+            body.append("\n".join(table) + "</table>")
+            table = None
+        heading = re.match(r"^(#+) (.*)", line)
+        image = re.match(r"^!\[(.*)\]\((.*)\)$", line)
+        if heading:
+            level = len(heading.group(1))
+            body.append(f"<h{level}>{inline_html(heading.group(2))}</h{level}>")
+        elif image:
+            body.append(f'<img src="{html.escape(image.group(2))}" alt="{html.escape(image.group(1))}">')
+        elif line.startswith("- "):
+            body.append(f"<li>{inline_html(line[2:])}</li>")
+        elif line.strip():
+            body.append(f"<p>{inline_html(line)}</p>")
+    style = ("body{font-family:sans-serif;max-width:70em;margin:auto}table{border-collapse:collapse}"
+             "td,th{border:1px solid #bbb;padding:2px 6px;font-size:90%}img{max-width:100%}")
+    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>sffcal main job</title>"
+            f"<style>{style}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("out", help="output folder of scripts/pipeline.py")
+    parser.add_argument("--scene", required=True)
+    args = parser.parse_args()
+    markdown = write_markdown(args.out, args.scene)
+    folder = os.path.join(args.out, "report")
+    with open(os.path.join(folder, "report.md"), "w") as f:
+        f.write(markdown)
+    with open(os.path.join(folder, "report.html"), "w") as f:
+        f.write(to_html(markdown))
+    print(f"wrote {folder}/report.md and report.html")
+
+
+if __name__ == "__main__":
+    main()
