@@ -51,6 +51,7 @@ target_void_ratio = 0.0        # > 0: search the compaction friction for this vo
 void_ratio_tolerance = 0.01
 loading_angle_deg = 0.0        # deposition: bedding plane contains X, at this angle to Y [deg]
 deposition_gravity = 9810.0    # deposition gravity [m/s^2] (1000 g; see docs/dem.md)
+deposition_damping = 0.3       # Cundall damping while the deposited bed settles
 csv = ""                       # packing file for method = "csv" (see docs/config.md)
 servo_max_speed = 0.5          # cap on the wall speed while compacting [m/s]
 local_damping = 0.7            # Cundall damping while preparing
@@ -157,6 +158,7 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
       {"preparation.void_ratio_tolerance", real(c.preparation.void_ratio_tolerance)},
       {"preparation.loading_angle_deg", real(c.preparation.loading_angle_deg)},
       {"preparation.deposition_gravity", real(c.preparation.deposition_gravity)},
+      {"preparation.deposition_damping", real(c.preparation.deposition_damping)},
       {"preparation.csv", text(c.preparation.csv_path)},
       {"preparation.servo_max_speed", real(servo_prep)},
       {"preparation.local_damping", real(c.preparation.local_damping)},
@@ -229,6 +231,8 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
   check(std::abs(p.loading_angle_deg) <= 90.0,
         where + "preparation.loading_angle_deg must lie in [-90, 90]");
   check(p.deposition_gravity > 0.0, where + "preparation.deposition_gravity must be positive");
+  check(p.deposition_damping >= 0.0 && p.deposition_damping < 1.0,
+        where + "preparation.deposition_damping must lie in [0, 1)");
   check(p.method != PreparationMethod::kCsv || !p.csv_path.empty(),
         where + "preparation.csv must name a file when preparation.method = \"csv\"");
   check(p.servo_max_speed > 0.0, where + "preparation.servo_max_speed must be positive [m/s]");

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "deposition.h"
 #include "dem/packing.h"
 #include "dem/rigid_body.h"
 
@@ -26,60 +27,6 @@ Eigen::Vector3d major_direction(const Eigen::Matrix3d& tensor, bool largest) {
   Eigen::Index k = 0;
   v.cwiseAbs().maxCoeff(&k);
   return v[k] < 0.0 ? (-v).eval() : v;  // a sign convention: the largest component positive
-}
-
-// A loose lattice settles to about a fifth of its height; with rounding of the lattice, a column
-// of this aspect ratio settles into a deposit somewhat taller than wide (measured).
-constexpr double kDepositionColumnRatio = 9.0;
-
-// Lets bodies fall under gravity between fixed walls until they rest.
-std::int64_t deposit(Simulation& sim, const PreparationConfig& prep, const ProgressLog& log) {
-  const std::int64_t start = sim.step_count();
-  int quiet = 0;
-  while (sim.step_count() - start < prep.compaction.max_steps) {
-    sim.run(2000);
-    const double ratio = sim.unbalanced_force_ratio();
-    quiet = (sim.num_touching_pairs() > 0 && ratio < 1e-3) ? quiet + 1 : 0;
-    if (quiet >= 3) return sim.step_count() - start;
-  }
-  if (log) log("deposition: bodies still moving after preparation.max_steps; compacting anyway");
-  return sim.step_count() - start;
-}
-
-// Tilts a deposit by `alpha` about X (its bedding normal Z goes to (0, -sin a, cos a)) and keeps
-// the bodies inside the largest axis-aligned box that fits in the tilted deposit.
-Particles tilt_and_trim(const Particles& deposit, const Eigen::Vector3d& lo,
-                        const Eigen::Vector3d& hi, double alpha, Eigen::Vector3d* box_lo,
-                        Eigen::Vector3d* box_hi) {
-  Eigen::Vector3d d_lo, d_hi;  // the deposit's extent (its free surface bounds it from above)
-  bounding_box(deposit, d_lo, d_hi);
-  d_lo = d_lo.cwiseMax(lo);
-  d_hi = d_hi.cwiseMin(hi);
-  const Eigen::Vector3d centre = 0.5 * (d_lo + d_hi), half = 0.5 * (d_hi - d_lo);
-  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitX()));
-  // A square of half-side s, axis-aligned after the tilt, fits in the deposit's y-z rectangle
-  // when s (|cos a| + |sin a|) <= both half-widths.
-  const double s = std::min(half.y(), half.z()) / (std::abs(std::cos(alpha)) + std::abs(std::sin(alpha)));
-  *box_lo = Eigen::Vector3d(-half.x(), -s, -s);
-  *box_hi = Eigen::Vector3d(half.x(), s, s);
-  Particles kept;
-  for (int b = 0; b < deposit.num_bodies(); ++b) {
-    const Eigen::Vector3d x = tilt * (deposit.position[b] - centre);
-    const Eigen::Quaterniond q = tilt * deposit.orientation[b];
-    const int s0 = deposit.first_sphere[b];
-    const double r = deposit.sphere_radius[s0];
-    bool inside = true;
-    for (int k = s0; k < s0 + deposit.num_body_spheres[b]; ++k) {
-      const Eigen::Vector3d xs = tilt * (deposit.sphere_position[k] - centre);
-      inside = inside && (xs.array() - r >= box_lo->array()).all() &&
-               (xs.array() + r <= box_hi->array()).all();
-    }
-    if (!inside) continue;
-    const double centre_distance = 2.0 * std::abs(deposit.sphere_offset[s0]);
-    const double density = deposit.mass[b] / deposit.volume[b];
-    kept.add_body({r, centre_distance}, density, x, q);
-  }
-  return kept;
 }
 
 }  // namespace
@@ -211,26 +158,16 @@ Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
     bounding_box(loose, lo, hi);
     r.method = "compaction";
   } else {
-    // Deposition: settle a column under gravity along -Z, tilt the deposit so that its bedding
-    // normal lies at the loading angle, and trim it to a box. Tilting loses the corners, so the
-    // column holds (|cos a| + |sin a|)^2 times the bodies wanted (plus 20 % for the surface).
-    const double alpha = prep.loading_angle_deg * kPi / 180.0;
-    const double overfill = std::pow(std::abs(std::cos(alpha)) + std::abs(std::sin(alpha)), 2) * 1.2;
-    const int column_bodies = static_cast<int>(std::ceil(overfill * config.num_bodies));
-    Particles column = random_lattice_packing(column_bodies, config.grains, config.seed, 0.05,
-                                              kDepositionColumnRatio);
-    bounding_box(column, lo, hi);
-    SimulationOptions deposition = options;
-    deposition.gravity = {0.0, 0.0, -prep.deposition_gravity};
-    Simulation sim(std::move(column), box_walls(lo, hi), law, deposition);
-    if (log) log("depositing " + std::to_string(column_bodies) + " bodies under " +
-                 std::to_string(prep.deposition_gravity) + " m/s^2");
-    r.deposition_steps = deposit(sim, prep, log);
-    loose = tilt_and_trim(sim.particles(), lo, hi, alpha, &lo, &hi);
+    Deposit bed = deposit_at_loading_angle(config, options, law, log);
+    r.deposition_steps = bed.steps;
     r.bedding_normal = bedding_normal(prep.loading_angle_deg);
-    r.method = "deposition at " + std::to_string(prep.loading_angle_deg) + " deg, " +
-               std::to_string(loose.num_bodies()) + " bodies kept, + compaction";
-    if (loose.num_bodies() < 2) throw std::runtime_error("deposition: too few bodies left after trimming");
+    loose = std::move(bed.bodies);
+    lo = bed.lo;
+    hi = bed.hi;
+    r.method = "deposition at " + std::to_string(prep.loading_angle_deg) + " deg (" +
+               std::to_string(loose.num_bodies()) + " bodies cut from a bed of " +
+               std::to_string(bed.deposited) + ") + compaction";
+    if (loose.num_bodies() < 2) throw std::runtime_error("deposition: too few bodies left after the cut");
   }
 
   // The state compaction starts from, at rest.
@@ -306,6 +243,11 @@ Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
   double friction = prep.compaction_friction;
   Simulation result = prep.target_void_ratio > 0.0 ? search(&friction) : compact(friction);
   r.compaction_friction = friction;
+  if (log && friction > config.contact.friction)
+    log("warning: the compaction friction " + std::to_string(friction) +
+        " exceeds the shearing friction " + std::to_string(config.contact.friction) +
+        ": contacts beyond the lower Coulomb limit slip when shearing starts, and a loose "
+        "specimen partly collapses");
   r.void_ratio = void_ratio(result);
   r.coordination_number = result.macro_record().coordination_number;
   r.fabric_major = major_direction(contact_normal_fabric(result), true);

@@ -26,6 +26,7 @@ struct PreparationConfig {
   double void_ratio_tolerance = 0.01;
   double loading_angle_deg = 0.0;        ///< bedding plane angle to the Y axis (deposition)
   double deposition_gravity = 9810.0;    ///< [m/s^2]; 1000 g, see docs/dem.md
+  double deposition_damping = 0.3;       ///< Cundall damping while the bed settles
   std::string csv_path;                  ///< packing to load (method = "csv")
   double servo_max_speed = 0.5;          ///< [m/s]
   double local_damping = 0.7;
