@@ -149,7 +149,6 @@ Deposit deposit_at_loading_angle(const RunConfig& config, const SimulationOption
 
   Deposit d;
   d.deposited = bed_bodies;
-  d.surface_margin = margin;
   Particles columns = stacked_columns(bed_bodies, grains, config.seed, spacing, sites_x, sites_y);
   Eigen::Vector3d lo, hi;
   bounding_box(columns, lo, hi);

@@ -14,7 +14,6 @@ struct Deposit {
   Eigen::Vector3d lo, hi;          ///< the cut box [m]
   int deposited = 0;               ///< bodies settled before the cut
   std::int64_t steps = 0;          ///< time steps of the settling
-  double surface_margin = 0.0;     ///< distance kept from the walls and the free surface [m]
 };
 
 /// Settles a wide, shallow bed of bodies under gravity along -Z between fixed walls, then keeps
