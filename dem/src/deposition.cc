@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "dem/packing.h"
 #include "dem/rigid_body.h"
@@ -104,24 +105,18 @@ double free_surface_low_point(const Particles& p, double column_width) {
   return lowest;
 }
 
-// Bodies of `bed` wholly inside the cube [-h, h]^3 after the rotation x -> tilt (x - centre).
-Particles cut_cube(const Particles& bed, const Eigen::Vector3d& centre,
-                   const Eigen::Quaterniond& tilt, double h, bool count_only, int* count) {
-  Particles kept;
-  *count = 0;
+// For each body of `bed`, the half side of the smallest cube [-h, h]^3 that holds it wholly after
+// the map x -> tilt (x - centre): the body is inside a cube of half side h iff its reach <= h.
+std::vector<double> cube_reach(const Particles& bed, const Eigen::Vector3d& centre,
+                               const Eigen::Quaterniond& tilt) {
+  std::vector<double> reach(static_cast<std::size_t>(bed.num_bodies()), 0.0);
   for (int b = 0; b < bed.num_bodies(); ++b) {
     const int s0 = bed.first_sphere[b];
-    const double r = bed.sphere_radius[s0];
-    bool inside = true;
-    for (int k = s0; k < s0 + bed.num_body_spheres[b] && inside; ++k)
-      inside = ((tilt * (bed.sphere_position[k] - centre)).cwiseAbs().array() + r <= h).all();
-    if (!inside) continue;
-    ++*count;
-    if (count_only) continue;
-    kept.add_body({r, 2.0 * std::abs(bed.sphere_offset[s0])}, bed.mass[b] / bed.volume[b],
-                  tilt * (bed.position[b] - centre), tilt * bed.orientation[b]);
+    for (int k = s0; k < s0 + bed.num_body_spheres[b]; ++k)
+      reach[b] = std::max(reach[b], (tilt * (bed.sphere_position[k] - centre)).cwiseAbs().maxCoeff() +
+                                        bed.sphere_radius[k]);
   }
-  return kept;
+  return reach;
 }
 
 }  // namespace
@@ -177,10 +172,12 @@ Deposit deposit_at_loading_angle(const RunConfig& config, const SimulationOption
   const Eigen::Quaterniond tilt(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitX()));
 
   // The smallest cube holding the bodies asked for: bisection on its half side.
-  int count = 0;
-  cut_cube(bed, centre, tilt, h_max, true, &count);
+  const std::vector<double> reach = cube_reach(bed, centre, tilt);
+  auto bodies_within = [&](double h) {
+    return static_cast<int>(std::count_if(reach.begin(), reach.end(), [h](double r) { return r <= h; }));
+  };
   double h = h_max;
-  if (count < config.num_bodies) {
+  if (const int count = bodies_within(h_max); count < config.num_bodies) {
     if (log) {
       std::ostringstream msg;
       msg << "deposition: only " << count << " of " << config.num_bodies
@@ -192,11 +189,16 @@ Deposit deposit_at_loading_angle(const RunConfig& config, const SimulationOption
     double h_lo = 0.0;
     for (int i = 0; i < 40; ++i) {
       const double mid = 0.5 * (h_lo + h);
-      cut_cube(bed, centre, tilt, mid, true, &count);
-      (count >= config.num_bodies ? h : h_lo) = mid;
+      (bodies_within(mid) >= config.num_bodies ? h : h_lo) = mid;
     }
   }
-  d.bodies = cut_cube(bed, centre, tilt, h, false, &count);
+  for (int b = 0; b < bed.num_bodies(); ++b) {
+    if (reach[b] > h) continue;
+    const int s0 = bed.first_sphere[b];
+    d.bodies.add_body({bed.sphere_radius[s0], 2.0 * std::abs(bed.sphere_offset[s0])},
+                      bed.mass[b] / bed.volume[b], tilt * (bed.position[b] - centre),
+                      tilt * bed.orientation[b]);
+  }
   d.lo = Eigen::Vector3d::Constant(-h);
   d.hi = Eigen::Vector3d::Constant(h);
   return d;
