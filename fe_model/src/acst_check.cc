@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -40,6 +41,17 @@ double interpolate(const std::vector<CurvePoint>& points, double x, double Curve
   return points.back().*member;
 }
 
+// The model integrates no state below its minimum mean stress, so a specimen confined below it is
+// refused before the first step (the FE solver would otherwise cut that step to nothing).
+std::string refused_confinement(const AcstSpecimen& specimen, const AcstLoading& loading) {
+  if (specimen.confining_pressure >= loading.integration.min_pressure) return "";
+  std::ostringstream message;
+  message << "confining pressure " << specimen.confining_pressure
+          << " Pa is below the model's minimum mean stress " << loading.integration.min_pressure
+          << " Pa (calibration::IntegrationOptions::min_pressure)";
+  return message.str();
+}
+
 }  // namespace
 
 Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters,
@@ -64,6 +76,8 @@ Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters
 
   Curve curve;
   curve.label = "driver";
+  curve.message = refused_confinement(specimen, loading);
+  if (!curve.message.empty()) return curve;
   calibration::State<double> state = initial;
   Eigen::Matrix3d strain = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d guess = Eigen::Matrix3d::Zero();
@@ -81,27 +95,46 @@ Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters
     curve.points.push_back(point);
   };
   record(calibration::UpdateStatus::kOk);
-  for (unsigned int k = 0; k < loading.n_steps; ++k) {
-    calibration::UpdateStatus status = calibration::UpdateStatus::kFailed;
-    Eigen::Matrix3d deps;
-    calibration::State<double> next;
-    for (const double tolerance : {1e-9, 1e-8}) {
-      options.stress_tolerance = tolerance;
-      deps = guess;
-      status = calibration::mixed_increment(parameters, state, control, value, deps, next, options);
-      if (status != calibration::UpdateStatus::kFailed) break;
-      ++curve.cuts;  // counted as a retry
+  // An increment that fails at both tolerances is halved (as the FE solver cuts its step), down
+  // to kMaxHalvings; the curve still gets one point per step, so that it lines up with the FE's.
+  constexpr int kMaxHalvings = 6;
+  for (unsigned int k = 0; k < loading.n_steps && curve.message.empty(); ++k) {
+    calibration::UpdateStatus worst = calibration::UpdateStatus::kOk;
+    double remaining = 1.0;  // fraction of the step still to apply
+    double fraction = 1.0;   // fraction tried next
+    while (remaining > 0.0) {
+      fraction = std::min(fraction, remaining);
+      std::array<double, 6> part = value;
+      part[2] = fraction * d_axial;
+      calibration::UpdateStatus status = calibration::UpdateStatus::kFailed;
+      Eigen::Matrix3d deps;
+      calibration::State<double> next;
+      for (const double tolerance : {1e-9, 1e-8}) {
+        options.stress_tolerance = tolerance;
+        deps = fraction * guess;
+        status = calibration::mixed_increment(parameters, state, control, part, deps, next, options);
+        if (status != calibration::UpdateStatus::kFailed) break;
+        ++curve.cuts;  // counted as a retry
+      }
+      if (status == calibration::UpdateStatus::kFailed) {
+        if (fraction > std::ldexp(1.0, -kMaxHalvings)) {
+          fraction *= 0.5;
+          ++curve.cuts;
+          continue;
+        }
+        curve.message = "material-point driver: increment " + std::to_string(k + 1) +
+                        " failed at axial strain " + std::to_string(strain(2, 2)) + " after " +
+                        std::to_string(kMaxHalvings) +
+                        " halvings (model update failure, or no Newton convergence to 1e-8 p)";
+        break;
+      }
+      if (status == calibration::UpdateStatus::kUnreliable) worst = status;
+      state = next;
+      strain += deps;
+      guess = deps / fraction;
+      remaining -= fraction;
     }
-    if (status == calibration::UpdateStatus::kFailed) {
-      curve.message = "material-point driver: increment " + std::to_string(k + 1) +
-                      " failed at axial strain " + std::to_string(strain(2, 2)) +
-                      " (model update failure, or no Newton convergence to 1e-8 p)";
-      break;
-    }
-    state = next;
-    strain += deps;
-    guess = deps;
-    record(status);
+    if (curve.message.empty()) record(worst);
   }
   curve.completed = curve.message.empty();
   curve.wall_seconds = seconds_since(t0);
@@ -112,6 +145,13 @@ Curve run_acst_fe_triaxial(const calibration::Parameters<double>& parameters,
                            const AcstSpecimen& specimen, const AcstLoading& loading,
                            const AcstMeshOptions& mesh) {
   const auto t0 = std::chrono::steady_clock::now();
+  const std::string refused = refused_confinement(specimen, loading);
+  if (!refused.empty()) {
+    Curve curve;
+    curve.label = mesh.cells_x * mesh.cells_y * mesh.cells_z == 1 ? "element" : "mesh";
+    curve.message = refused;
+    return curve;
+  }
   AcstInitialState initial;
   initial.void_ratio = specimen.void_ratio;
   initial.fabric = specimen.fabric;

@@ -85,6 +85,7 @@ struct Curve {
   std::vector<CurvePoint> points;  ///< the initial state first; converged steps only (never NaN)
   int newton_iterations = 0;    ///< FE: summed over the run
   int cuts = 0;                 ///< FE: halvings summed over the run; driver: increments retried at 1e-8 p
+                                ///< or halved
   double wall_seconds = 0.0;
 };
 

@@ -1,0 +1,145 @@
+#!/usr/bin/python3
+"""Tables and the Pareto plot of the run-time-against-error sweep (run_sweep.py).
+
+usage: summarise.py OUT [--png bench/accuracy/pareto.png]
+
+Measures of each run: peak eta (largest wall q/p), critical eta (mean wall q/p over 20-30 %
+axial strain), volumetric strain at 10 % axial strain (compression positive), and a_c at the
+peak (the snapshots' a_c interpolated at the peak's axial strain). Error of a case in one
+measure: the root mean square over the seeds of (case - reference) on the same specimen.
+Scatter: the standard deviation between seeds, pooled over the reference and base runs (4
+degrees of freedom with three seeds). A case is "within scatter" when every error is at most
+the scatter of its measure; its score is the largest error / scatter ratio.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_sweep import CASES, SEEDS, case_keys  # noqa: E402
+
+MEASURES = (("peak_eta", "peak η"), ("critical_eta", "critical η"), ("ev_10", "ε_v at 10 %"),
+            ("ac_peak", "a_c at peak"))
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]} if rows else {}
+
+
+def interpolate(x, xs, ys):
+    for i in range(1, len(xs)):
+        if xs[i] >= x:
+            t = (x - xs[i - 1]) / (xs[i] - xs[i - 1]) if xs[i] > xs[i - 1] else 0.0
+            return ys[i - 1] + t * (ys[i] - ys[i - 1])
+    return ys[-1]
+
+
+def measures(stem):
+    """None when the run failed or is not finished."""
+    try:
+        seconds, code = open(stem + ".time").read().split()
+    except OSError:
+        return None
+    if int(code) != 0:
+        return {"seconds": float(seconds), "failed": True}
+    series = read_csv(stem + ".h5.series.csv")
+    sff = read_csv(stem + ".h5.sff.csv")
+    strain, eta = series["axial_strain"], series["eta"]
+    peak = max(range(len(eta)), key=lambda i: eta[i])
+    window = [e for s, e in zip(strain, eta) if 0.2 <= s <= 0.3]
+    return {"seconds": float(seconds), "failed": False,
+            "peak_eta": eta[peak],
+            "critical_eta": sum(window) / len(window),
+            "ev_10": interpolate(0.10, strain, series["volumetric_strain"]),
+            "ac_peak": interpolate(strain[peak], sff["axial_strain"], sff["a_c"])}
+
+
+def stdev(values):
+    mean = sum(values) / len(values)
+    return math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("out")
+    parser.add_argument("--png", default="")
+    args = parser.parse_args()
+    runs = {(name, seed): measures(os.path.join(args.out, "runs", f"{name}_seed{seed}"))
+            for name in CASES for seed in SEEDS}
+    reference = [runs["reference", s] for s in SEEDS]
+    base = [runs["base", s] for s in SEEDS]
+    if any(r is None or r["failed"] for r in reference + base):
+        sys.exit("the reference and base runs must be finished for every seed")
+    scatter = {}
+    for key, _ in MEASURES:
+        pooled = (stdev([r[key] for r in reference]) ** 2 + stdev([r[key] for r in base]) ** 2) / 2
+        scatter[key] = math.sqrt(pooled)
+    base_seconds = sum(r["seconds"] for r in base) / len(base)
+
+    header = ["case", "setting", "wall s", "speed-up"] + [f"{label} (error)" for _, label in MEASURES] + ["score"]
+    print("| " + " | ".join(header) + " |")
+    print("|" + "---|" * len(header))
+    print("| seed scatter | | | | " + " | ".join(f"{scatter[k]:.3g}" for k, _ in MEASURES) + " | 1 |")
+    points = []
+    for name in CASES:
+        done = [runs[name, s] for s in SEEDS if runs[name, s] is not None]
+        setting = ", ".join(f"{k.split('.')[-1]} {v}" for k, v in CASES[name].items()) or "defaults"
+        if len(done) < len(SEEDS):
+            print(f"| {name} | {setting} | {len(done)}/{len(SEEDS)} seeds done |")
+            continue
+        seconds = sum(r["seconds"] for r in done) / len(done)
+        if any(r["failed"] for r in done):
+            print(f"| {name} | {setting} | {seconds:.0f} | {base_seconds / seconds:.2f} | failed (see the run log) |")
+            continue
+        cells, score = [], 0.0
+        for key, _ in MEASURES:
+            mean = sum(r[key] for r in done) / len(done)
+            error = math.sqrt(sum((r[key] - ref[key]) ** 2 for r, ref in zip(done, reference)) / len(done))
+            score = max(score, error / scatter[key])
+            cells.append(f"{mean:.3f} ({error:.3f})")
+        points.append((name, seconds, score))
+        print(f"| {name} | {setting} | {seconds:.0f} | {base_seconds / seconds:.2f} | " + " | ".join(cells)
+              + f" | {score:.2f} |")
+
+    front, best = [], math.inf
+    for name, seconds, score in sorted(points, key=lambda p: (p[1], p[2])):
+        if score < best:
+            front.append((name, seconds, score))
+            best = score
+    print("\nPareto front (faster and not worse than any other case): "
+          + ", ".join(f"{n} ({s:.0f} s, score {e:.2f})" for n, s, e in front))
+    within = [p for p in points if p[2] <= 1.0]
+    if within:
+        fastest = min(within, key=lambda p: p[1])
+        print(f"fastest case within the seed scatter: {fastest[0]} ({fastest[1]:.0f} s, score {fastest[2]:.2f})")
+    if args.png:
+        plot(points, front, args.png)
+
+
+def plot(points, front, png):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for name, seconds, score in points:
+        ax.plot(seconds, score, "o", color="tab:blue" if score <= 1 else "tab:red", ms=5)
+        ax.annotate(name, (seconds, score), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    ax.plot([p[1] for p in front], [p[2] for p in front], "-", color="gray", lw=1, label="Pareto front")
+    ax.axhline(1.0, color="k", ls=":", lw=1, label="seed scatter")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall-clock time per run [s] (one thread)")
+    ax.set_ylabel("largest error / seed scatter")
+    ax.set_title(f"{case_keys('base')['bodies']} clumps, dense, 100 kPa, to 30 % axial strain")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)
+    print(f"wrote {png}")
+
+
+if __name__ == "__main__":
+    main()
