@@ -15,6 +15,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -46,12 +47,13 @@ def measures(stem):
         return None
     if int(code) != 0:
         return {"seconds": float(seconds), "failed": True}
+    summary = re.search(r"(\d+) steps in ([0-9.]+) s", open(stem + ".log").read())
     series = read_csv(stem + ".h5.series.csv")
     sff = read_csv(stem + ".h5.sff.csv")
     strain, eta = series["axial_strain"], series["eta"]
     peak = max(range(len(eta)), key=lambda i: eta[i])
     window = [e for s, e in zip(strain, eta) if 0.2 <= s <= 0.3]
-    return {"seconds": float(seconds), "failed": False,
+    return {"seconds": float(summary.group(2)), "steps": int(summary.group(1)), "failed": False,
             "peak_eta": eta[peak],
             "critical_eta": sum(window) / len(window),
             "ev_10": interpolate(0.10, strain, series["volumetric_strain"]),
@@ -80,10 +82,10 @@ def main():
         scatter[key] = math.sqrt(pooled)
     base_seconds = sum(r["seconds"] for r in base) / len(base)
 
-    header = ["case", "setting", "wall s", "speed-up"] + [f"{label} (error)" for _, label in MEASURES] + ["score"]
+    header = ["case", "setting", "steps", "wall s", "speed-up"] + [f"{label} (error)" for _, label in MEASURES] + ["score"]
     print("| " + " | ".join(header) + " |")
     print("|" + "---|" * len(header))
-    print("| seed scatter | | | | " + " | ".join(f"{scatter[k]:.3g}" for k, _ in MEASURES) + " | 1 |")
+    print("| seed scatter | | | | | " + " | ".join(f"{scatter[k]:.3g}" for k, _ in MEASURES) + " | 1 |")
     points = []
     for name in CASES:
         done = [runs[name, s] for s in SEEDS if runs[name, s] is not None]
@@ -93,7 +95,7 @@ def main():
             continue
         seconds = sum(r["seconds"] for r in done) / len(done)
         if any(r["failed"] for r in done):
-            print(f"| {name} | {setting} | {seconds:.0f} | {base_seconds / seconds:.2f} | failed (see the run log) |")
+            print(f"| {name} | {setting} | | {seconds:.0f} | {base_seconds / seconds:.2f} | failed (see the run log) |")
             continue
         cells, score = [], 0.0
         for key, _ in MEASURES:
@@ -102,7 +104,8 @@ def main():
             score = max(score, error / scatter[key])
             cells.append(f"{mean:.3f} ({error:.3f})")
         points.append((name, seconds, score))
-        print(f"| {name} | {setting} | {seconds:.0f} | {base_seconds / seconds:.2f} | " + " | ".join(cells)
+        steps = sum(r["steps"] for r in done) / len(done)
+        print(f"| {name} | {setting} | {steps:.3g} | {seconds:.0f} | {base_seconds / seconds:.2f} | " + " | ".join(cells)
               + f" | {score:.2f} |")
 
     front, best = [], math.inf
@@ -132,7 +135,7 @@ def plot(points, front, png):
     ax.axhline(1.0, color="k", ls=":", lw=1, label="seed scatter")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall-clock time per run [s] (one thread)")
+    ax.set_xlabel("wall-clock time of the shearing per run [s] (one thread)")
     ax.set_ylabel("largest error / seed scatter")
     ax.set_title(f"{case_keys('base')['bodies']} clumps, dense, 100 kPa, to 30 % axial strain")
     ax.legend(fontsize=8)

@@ -147,12 +147,14 @@ void Simulation::initialise() {
   }
   skin_ = options_.skin_ratio * 2.0 * r_max;
   dt_ = options_.time_step > 0.0 ? options_.time_step : options_.time_step_safety * critical_dt_;
-  // A single undamped contact is unstable beyond 2 / omega; refuse such a step outright.
-  if (dt_ > 2.0 * critical_dt_) {
+  // One undamped contact is stable up to 2 dt_c, but a packing with several contacts per body is
+  // not: a frictionless jammed packing gains 4.5 %, 23 % and 83 % energy over 500 dt_c at 1, 1.5
+  // and 1.9 dt_c (docs/dem.md). An explicit step gets the bound time_step_safety has.
+  if (dt_ > critical_dt_) {
     std::ostringstream msg;
-    msg << "Simulation: time_step " << dt_ << " s exceeds the stable limit " << 2.0 * critical_dt_
-        << " s of a single contact (critical step " << critical_dt_
-        << " s); use time_step_safety <= 0.5 or a smaller time_step";
+    msg << "Simulation: time_step " << dt_ << " s exceeds the critical step " << critical_dt_
+        << " s (sqrt(m/k) of the lightest body on its stiffest contact), past which a packing's "
+           "energy grows; use time_step_safety (default 0.2) or a time_step below the critical step";
     throw std::invalid_argument(msg.str());
   }
   wall_force_.assign(walls_.size(), 0.0);

@@ -61,6 +61,7 @@ TEST(RunConfig, BadInputNamesTheKey) {
   expect_error("bodies = 1\n", "bodies must be >= 2");
   expect_error("[preparation]\nmethod = \"pour\"\n", "preparation.method");
   expect_error("[triaxial]\nstrain_rate = 0\n", "strain_rate");
+  expect_error("[engine]\ntime_step_safety = 1.5\n", "time_step_safety");
   expect_error("[preparation]\ndeposition_damping = 1.0\n", "preparation.deposition_damping");
   expect_error("[grains\n", "TOML syntax error at line 1");
 }

@@ -26,7 +26,7 @@
 namespace dem {
 
 struct SimulationOptions {
-  /// Time step [s]; 0 picks time_step_safety x the critical step.
+  /// Time step [s]; 0 picks time_step_safety x the critical step. At most the critical step.
   double time_step = 0.0;
   /// Fraction of the critical step used when time_step is 0.
   double time_step_safety = 0.2;
@@ -75,7 +75,7 @@ struct SimulationState {
 class Simulation {
  public:
   /// Takes the bodies and walls and checks every parameter; throws std::invalid_argument naming
-  /// the bad one, and refuses a time step above the stable limit of a single contact.
+  /// the bad one, and refuses a time step above the critical step.
   Simulation(Particles particles, std::vector<Wall> walls, ContactParameters contact,
              SimulationOptions options);
 
