@@ -157,8 +157,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::printf("| bodies | kind | threads | contacts | candidates | steps | wall s | body-steps/s/core | "
-              "sphere-steps/s/core | contact-steps/s/core | detect %% | forces %% | integrate %% |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "sphere-steps/s/core | contact-steps/s/core | detect %% | forces %% | integrate %% | list builds |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int bodies : body_counts) {
     for (bool clumps : {true, false}) {
       omp_set_num_threads(omp_get_num_procs());
@@ -173,6 +173,7 @@ int main(int argc, char** argv) {
         dem::Simulation sim(std::move(particles), prepared.walls(), law, options);
         sim.run(50);  // build the lists and warm the caches
         const dem::PhaseTimings before = sim.timings();
+        const std::int64_t builds_before = sim.contacts().num_builds();
         const auto start = std::chrono::steady_clock::now();
         sim.run(steps);
         const double seconds =
@@ -184,12 +185,13 @@ int main(int argc, char** argv) {
         const double total = detect + forces + integrate;
         const double contacts = sim.num_touching_pairs();
         const double per_core = static_cast<double>(steps) / seconds / threads;
-        std::printf("| %d | %s | %d | %.0f | %d | %d | %.2f | %.3g | %.3g | %.3g | %.1f | %.1f | %.1f |\n",
+        std::printf("| %d | %s | %d | %.0f | %d | %d | %.2f | %.3g | %.3g | %.3g | %.1f | %.1f | %.1f | %lld |\n",
                     bodies, clumps ? "clumps" : "spheres", threads, contacts, sim.contacts().num_pairs(),
                     steps, seconds,
                     bodies * per_core, sim.particles().num_spheres() * per_core,
                     contacts * per_core, 100 * detect / total, 100 * forces / total,
-                    100 * integrate / total);
+                    100 * integrate / total,
+                    static_cast<long long>(sim.contacts().num_builds() - builds_before));
         std::fflush(stdout);
       }
     }

@@ -27,7 +27,9 @@ SEEDS = (1, 2, 3)
 BODIES = 300
 MAX_STRAIN = 0.30
 
-# The project's defaults (docs/config.md), written out so the table names every setting.
+# The base case: the settings of examples/quick_triaxial.toml (the engine defaults; strain rate
+# 50 /s where the config default is the paper's 20 /s, case rate_20; a snapshot every 1 % of axial
+# strain instead of 5 %, so that a_c at the peak is resolved), written out in full.
 BASE = {
     "engine.time_step_safety": 0.2,
     "engine.density_scaling": 1.0,
@@ -64,6 +66,10 @@ CASES = {
     "output_coarse": {"triaxial.output_strain_interval": 0.01, "triaxial.snapshot_strain_interval": 0.05},
     "bodies_150": {"bodies": 150},
     "bodies_600": {"bodies": 600},
+    # Combinations, chosen after the one-knob cases (bench/RESULTS.md "Run time against error").
+    "combo_rate100_safety0.35": {"triaxial.strain_rate": 100.0, "engine.time_step_safety": 0.35},
+    "combo_rate200_safety0.5": {"triaxial.strain_rate": 200.0, "engine.time_step_safety": 0.5},
+    "combo_rate400_safety0.7": {"triaxial.strain_rate": 400.0, "engine.time_step_safety": 0.7},
 }
 
 
@@ -151,6 +157,9 @@ def main():
     parser.add_argument("--jobs", type=int, default=1)
     parser.add_argument("--sffcal", default=os.path.join(ROOT, "build", "sffcal"))
     parser.add_argument("--only", default="")
+    parser.add_argument("--seeds", default=",".join(map(str, SEEDS)),
+                        help="comma-separated seeds (default: %(default)s); more seeds for some cases tighten "
+                             "their errors (summarise.py pairs every case with the reference seed by seed)")
     parser.add_argument("--list", action="store_true")
     parser.add_argument("--reclaim", action="store_true", help="drop the claims of unfinished runs first")
     args = parser.parse_args()
@@ -168,8 +177,9 @@ def main():
                 done = f[:-len(".claim")] + (".time" if folder == "runs" else "")
                 if f.endswith(".claim") and not os.path.exists(os.path.join(path, done)):
                     os.remove(os.path.join(path, f))
-    tasks = [(args.out, os.path.abspath(args.sffcal), name, seed) for name in names for seed in SEEDS]
-    print(f"{len(tasks)} runs ({len(names)} cases x seeds {SEEDS}), {args.jobs} at a time", flush=True)
+    seeds = [int(s) for s in args.seeds.split(",")]
+    tasks = [(args.out, os.path.abspath(args.sffcal), name, seed) for name in names for seed in seeds]
+    print(f"{len(tasks)} runs ({len(names)} cases x seeds {seeds}), {args.jobs} at a time", flush=True)
     with Pool(args.jobs) as pool:
         for line in pool.imap_unordered(shear, tasks):
             print(time.strftime("%H:%M:%S"), line, flush=True)

@@ -3,26 +3,32 @@
 
 usage: results_page.py [FOLDER=tests/data/reference/matrix] [--img docs/img/matrix]
 
-Reads the reduced run files (reduce_matrix.py) and prints Markdown: one row per test with the
-initial void ratio, peak and last q/p, void ratios, and a_c, a_n, m at the peak and at the end;
-then the influence of the initial void ratio, the confining pressure and the loading angle on
-the anisotropies, as least-squares slopes. Peak: the largest wall q/p of the series, with a_c,
-a_n, m from the snapshot nearest to it (snapshots every 2.5 % of axial strain). End: q/p and
-void ratio averaged over the last 5 % of axial strain, anisotropies of the last snapshot.
+Reads the reduced run files (reduce_matrix.py) and prints Markdown: the per-test table of
+scripts/sff_table.py (snapshots: e0, peak and last q/p, a_c, a_n, m, last e, SFF errors), then the
+influence of the initial void ratio, the confining pressure and the loading angle on the
+stress ratio and the anisotropies, as least-squares slopes with their standard errors. Here the
+peak is the largest wall q/p of the series (every 0.2 % of axial strain), with a_c, a_n, m from
+the snapshot nearest to it (snapshots every 2.5 %); the end values are q/p averaged over the
+last 5 % of axial strain and the anisotropies of the last snapshot.
 """
 import argparse
 import glob
 import os
+import sys
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import sff_table  # noqa: E402
 
 
 def load(path):
     with h5py.File(path, "r") as f:
         s = {k: f["series"][k][:] for k in ("axial_strain", "eta", "void_ratio", "volumetric_strain")}
         a = {k: f["analysis/sff"][k][:] for k in ("axial_strain", "a_c", "a_n", "a_t", "m", "eta")}
-        config = f.attrs["config"]
+        summary = f.attrs.get("note:summary", "")
+        summary = summary.decode() if isinstance(summary, bytes) else str(summary)
     name = os.path.basename(path)[:-3]
     peak = int(np.argmax(s["eta"]))
     near = int(np.argmin(np.abs(a["axial_strain"] - s["axial_strain"][peak])))
@@ -36,18 +42,17 @@ def load(path):
             "end_strain": s["axial_strain"][-1], "end_eta": s["eta"][end].mean(), "end_e": s["void_ratio"][end].mean(),
             "peak_ac": a["a_c"][near], "peak_an": a["a_n"][near], "peak_m": a["m"][near],
             "end_ac": a["a_c"][-1], "end_an": a["a_n"][-1], "end_m": a["m"][-1],
-            "ac0": a["a_c"][0], "series": s, "sff": a, "config": config}
+            "ac0": a["a_c"][0], "series": s, "sff": a,
+            "ended": summary.split(";")[0]}
 
 
-def table(runs):
-    print("| test | e0 | a_c at start | peak q/p | at ε_a | a_c, a_n, m at peak (snapshot ε_a) | "
-          "end ε_a | end q/p | end e | a_c, a_n, m at end |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+def series_table(runs):
+    """The stress ratio and void ratio from the series (finer than the snapshots)."""
+    print("\n| test | e0 | peak q/p (walls) | at ε_a | q/p at end (last 5 %) | e at end | how the run ended |")
+    print("|---|---|---|---|---|---|---|")
     for r in runs:
-        print(f"| {r['name']} | {r['e0']:.3f} | {r['ac0']:+.3f} | {r['peak_eta']:.3f} | {100 * r['peak_strain']:.1f} % | "
-              f"{r['peak_ac']:.3f}, {r['peak_an']:.3f}, {r['peak_m']:.3f} ({100 * r['peak_snapshot_strain']:.1f} %) | "
-              f"{100 * r['end_strain']:.1f} % | {r['end_eta']:.3f} | {r['end_e']:.3f} | "
-              f"{r['end_ac']:.3f}, {r['end_an']:.3f}, {r['end_m']:.3f} |")
+        print(f"| {r['name']} | {r['e0']:.3f} | {r['peak_eta']:.3f} | {100 * r['peak_strain']:.1f} % | "
+              f"{r['end_eta']:.3f} | {r['end_e']:.3f} | {r['ended']} |")
 
 
 def slope(x, y):
@@ -138,7 +143,8 @@ def main():
     order = {"iso": 0, "dep": 1}
     runs.sort(key=lambda r: (order[r["kind"]], ["dense", "medium", "loose"].index(r["density"]), r["pressure"],
                              r["angle"] or 0))
-    table(runs)
+    sff_table.main([os.path.join(args.folder, r["name"] + ".h5") for r in runs])
+    series_table(runs)
     influences(runs)
     if args.img:
         figures(runs, args.img)

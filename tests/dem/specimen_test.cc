@@ -142,3 +142,22 @@ TEST(Preparation, LoadsACsvPackingAndNamesBadLines) {
 
 }  // namespace
 }  // namespace dem
+
+namespace dem {
+namespace {
+
+// The example configs are read by users and scripts: each must load, and the fast preset must
+// carry the settings bench/RESULTS.md measured ("Run time against error").
+TEST(RunConfig, ExampleConfigsLoad) {
+  const std::string examples = std::string(SFFCAL_SOURCE_DIR) + "/examples/";
+  for (const char* name : {"quick_triaxial.toml", "fast_triaxial.toml"}) {  // not the pipeline scenes
+    EXPECT_NO_THROW(load_run_config(examples + name)) << name;
+  }
+  const RunConfig fast = load_run_config(examples + "fast_triaxial.toml");
+  EXPECT_EQ(fast.engine.time_step_safety, 0.5);
+  EXPECT_EQ(fast.triaxial.strain_rate, 200.0);
+  EXPECT_EQ(parse_run_config(default_run_config_text()).triaxial.strain_rate, 100.0);
+}
+
+}  // namespace
+}  // namespace dem

@@ -25,6 +25,7 @@ namespace {
 
 const std::string kFolder = std::string(SFFCAL_SOURCE_DIR) + "/tests/data/reference/rerun/";
 const std::vector<std::uint64_t> kSeeds = {101, 102, 103};  // the statistics use seeds 1..12
+const double kReruns = static_cast<double>(kSeeds.size());
 constexpr double kStoredSeeds = 12.0;
 // With 12 stored seeds, the difference of the means exceeds 5 of its standard deviations with a
 // probability of about 5e-4 (Student's t, 11 dof): an unchanged physics passes the 12 comparisons
@@ -97,8 +98,8 @@ void expect_within_scatter(const std::string& which) {
   ASSERT_EQ(statistics.size(), 6u) << "statistics.csv lacks measures of " << which;
   std::map<std::string, double> mean;
   for (std::uint64_t seed : kSeeds)
-    for (const auto& [measure, value] : rerun(which, seed)) mean[measure] += value / kSeeds.size();
-  const double scale = std::sqrt(1.0 / kSeeds.size() + 1.0 / kStoredSeeds);
+    for (const auto& [measure, value] : rerun(which, seed)) mean[measure] += value / kReruns;
+  const double scale = std::sqrt(1.0 / kReruns + 1.0 / kStoredSeeds);
   for (const auto& [measure, s] : statistics) {
     ASSERT_GT(s.std, 0.0) << measure;
     const double value = mean.at(measure);
