@@ -4,7 +4,7 @@
 usage: sff_table.py RUN.h5|RUN.sff.csv [...]
 
 Reads each run's SFF table (/analysis/sff of a run file, or the <run>.sff.csv that `sffcal sff`
-writes) and prints: e0, the peak and last stress ratio with a_c, a_n, m, the worst SFF stress
+writes) and prints: e0, the peak and last stress ratio with a_c, a_n, m, the last void ratio, the worst SFF stress
 error, the worst |eta_SFF - eta| / eta (eta > 0.3) and the worst particle-form-vs-wall stress
 difference.
 """
@@ -38,9 +38,9 @@ def name_of(path):
 
 
 def main(paths):
-    print("| test | e0 | peak η (ε_a) | a_c, a_n, m at peak | last η (ε_a) | a_c, a_n, m at last | "
+    print("| test | e0 | peak η (ε_a) | a_c, a_n, m at peak | last η (ε_a) | a_c, a_n, m at last | last e | "
           "max ‖σ_SFF−σ‖/‖σ‖ | max \\|η_SFF−η\\|/η | max \\|σ−σ_walls\\|/p |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for path in paths:
         t = load(path)
         k, last = int(np.argmax(t["eta"])), len(t["eta"]) - 1
@@ -50,7 +50,7 @@ def main(paths):
         print(f"| {name_of(path)} | {t['void_ratio'][0]:.3f} | {t['eta'][k]:.3f} ({100 * t['axial_strain'][k]:.1f} %) | "
               f"{t['a_c'][k]:.2f}, {t['a_n'][k]:.2f}, {t['m'][k]:.2f} | "
               f"{t['eta'][last]:.3f} ({100 * t['axial_strain'][last]:.1f} %) | "
-              f"{t['a_c'][last]:.2f}, {t['a_n'][last]:.2f}, {t['m'][last]:.2f} | "
+              f"{t['a_c'][last]:.2f}, {t['a_n'][last]:.2f}, {t['m'][last]:.2f} | {t['void_ratio'][last]:.3f} | "
               f"{100 * np.max(t['sff_error']):.1f} % | {100 * eta_error:.1f} % | {100 * wall:.2f} % |")
 
 

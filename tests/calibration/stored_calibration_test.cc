@@ -17,7 +17,8 @@ namespace {
 const std::string kData = std::string(SFFCAL_SOURCE_DIR) + "/tests/data/reference/";
 
 // The stored fit: `sffcal calibrate` on these runs with --starts 1 --points 20 (README there).
-const std::vector<std::string> kRuns = {"matrix/iso_dense_100kPa.h5", "matrix/iso_dense_300kPa.h5"};
+const std::vector<std::string> kRuns = {"matrix/iso_dense_100kPa.h5", "matrix/iso_dense_300kPa.h5",
+                                        "matrix/iso_loose_100kPa.h5"};
 
 TEST(StoredCalibration, StoredRunsGiveTheStoredParametersWithinTheirErrors) {
   std::ifstream in(kData + "calibration/parameters.json");
