@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
   fe_check->add_option("-o,--output", fe_check_options.output_folder, "output folder")
       ->capture_default_str();
   fe_check->add_option("--model-tol", fe_check_options.integration_tolerance,
-                       "substepping tolerance of the model (driver and FE alike)")
+                       "substep error tolerance of the model, driver and FE alike (0: one step per increment)")
       ->capture_default_str();
   fe_check->add_option("--a-cs", fe_check_options.a_cs,
                        "DEM fabric normalisation ||A|| at critical state (F = A_DEM/a_cs); "

@@ -37,17 +37,34 @@ UpdateStatus update_with_tangent(const Parameters<double>& par, const State<doub
                                  const Tensor<double>& strain_increment, State<double>& end,
                                  Eigen::Matrix<double, 9, 9>& tangent,
                                  const IntegrationOptions& options) {
-  State<StrainJet> end_jet;
-  const UpdateStatus status =
-      update_with_strain_derivatives(par, start, strain_increment, end_jet, options);
-  end = cast_state<double>(end_jet);
   tangent.setZero();
-  if (status == UpdateStatus::kFailed) return status;
+  Eigen::Matrix<double, 6, 6> voigt;  // d sigma_a / d eps_b, shear seeds moving eps_kl and eps_lk
+  UpdateStatus status = UpdateStatus::kFailed;
+  if (options.method == IntegrationMethod::kImplicit) {
+    thread_local implicit_detail::Tape tape;  // reused: no allocation per update
+    tape.with_inputs = true;
+    status = implicit_detail::integrate_values(par, start, strain_increment, options, end, &tape,
+                                               nullptr);
+    if (status == UpdateStatus::kFailed) return status;
+    if (!implicit_detail::replay_tangent(par, start, strain_increment, tape, voigt)) {
+      end = start;
+      return UpdateStatus::kFailed;
+    }
+  } else {
+    State<StrainJet> end_jet;
+    status = update_with_strain_derivatives(par, start, strain_increment, end_jet, options);
+    end = cast_state<double>(end_jet);
+    if (status == UpdateStatus::kFailed) return status;
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) voigt(a, b) = end_jet.stress(kVoigtRow[a], kVoigtCol[a]).v[b];
+  }
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
+    for (int j = 0; j < 3; ++j) {
+      const int row = i <= j ? (i == j ? i : (i == 0 ? (j == 1 ? 3 : 5) : 4))
+                             : (j == 0 ? (i == 1 ? 3 : 5) : 4);
       for (int k = 0; k < 6; ++k) {
         const int a = kVoigtRow[k], b = kVoigtCol[k];
-        const double d = end_jet.stress(i, j).v[k];
+        const double d = voigt(row, k);
         if (a == b) {
           tangent(3 * i + j, 3 * a + b) = d;
         } else {  // d/d(eps_ab) with eps_ab = eps_ba moving together: half to each
@@ -55,6 +72,7 @@ UpdateStatus update_with_tangent(const Parameters<double>& par, const State<doub
           tangent(3 * i + j, 3 * b + a) = 0.5 * d;
         }
       }
+    }
   return status;
 }
 

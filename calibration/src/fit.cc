@@ -91,14 +91,11 @@ Loss parse_loss(const std::string& text) {
 
 DriverOptions FitOptions::fit_driver_options() {
   DriverOptions d;
-  // 1e-7 (at 1e-6 the first large increment's parameter derivatives were 0.8 % off, and on the
-  // dense 500-clump matrix test the noisier objective stopped the plastic and joint stages in a
-  // worse minimum: joint cost 129 against 104, docs/calibration.md "Speed"). The reported errors
-  // use report_driver_options (1e-9). The derivative guard would make the post-peak Jacobian
-  // accurate too, but with 8-16 parameter directions it drives the substeps to its floor and a
-  // Jacobian costs minutes: off (docs/calibration.md, "Open problems").
-  d.integration.tolerance = 1e-7;
-  d.integration.guard_derivatives = false;
+  // The implicit integration at 1e-4: its parameter derivatives are exact derivatives of the
+  // discrete path (implicit function theorem on each converged local system, docs/model.md §4),
+  // and the path is within about 1e-4 of the converged one (docs/model.md §4). The reported
+  // errors use report_driver_options (1e-7).
+  d.integration = IntegrationOptions::implicit_controlled(1e-3);
   d.stress_tolerance = 1e-6;  // above the integration noise (~tolerance |sigma|)
   // Fail fast: a parameter set the model cannot integrate is rejected by Ceres anyway, and the
   // driver then cuts the increment; 100000 attempted substeps per update made such sets cost
@@ -109,10 +106,9 @@ DriverOptions FitOptions::fit_driver_options() {
 }
 
 DriverOptions FitOptions::report_driver_options() {
-  // The fit's path at 1e-9 (the driver's default) with the Newton residual at 1e-8 p, and no
-  // fail-fast caps: the reported errors are those of an accurate integration.
+  // The fit's path at the driver's default (implicit, 1e-7) with the Newton residual at 1e-8 p,
+  // and no fail-fast caps: the reported errors are those of an accurate integration.
   DriverOptions d;
-  d.integration.tolerance = 1e-9;
   d.stress_tolerance = 1e-8;
   return d;
 }

@@ -2,6 +2,7 @@
 #include "fe_model/solid.h"
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
@@ -138,40 +139,82 @@ void Solid::apply_prescribed_displacements(double load, dealii::Vector<double>& 
   for (const auto& [dof, value] : values) u[dof] = value;
 }
 
+namespace {
+
+// Per-thread scratch of the assembly (WorkStream copies it once per thread).
+struct AssemblyScratch {
+  AssemblyScratch(const dealii::FiniteElement<3>& fe, const dealii::Quadrature<3>& quadrature,
+                  const dealii::Quadrature<2>& face_quadrature)
+      : fe_values(fe, quadrature, dealii::update_gradients | dealii::update_JxW_values),
+        fe_face_values(fe, face_quadrature,
+                       dealii::update_values | dealii::update_quadrature_points |
+                           dealii::update_normal_vectors | dealii::update_JxW_values),
+        strains(quadrature.size()),
+        shape_strain(fe.n_dofs_per_cell()) {}
+  AssemblyScratch(const AssemblyScratch& other)
+      : fe_values(other.fe_values.get_fe(), other.fe_values.get_quadrature(),
+                  other.fe_values.get_update_flags()),
+        fe_face_values(other.fe_face_values.get_fe(), other.fe_face_values.get_quadrature(),
+                       other.fe_face_values.get_update_flags()),
+        strains(other.strains.size()),
+        shape_strain(other.shape_strain.size()) {}
+  dealii::FEValues<3> fe_values;
+  dealii::FEFaceValues<3> fe_face_values;
+  std::vector<SymmetricTensor2> strains;
+  std::vector<SymmetricTensor2> shape_strain;
+};
+
+// What one cell contributes, handed to the (sequential, in-order) copier.
+struct AssemblyCopy {
+  explicit AssemblyCopy(unsigned int dofs_per_cell)
+      : cell_matrix(dofs_per_cell, dofs_per_cell),
+        cell_residual(dofs_per_cell),
+        cell_internal(dofs_per_cell),
+        dof_indices(dofs_per_cell) {}
+  dealii::FullMatrix<double> cell_matrix;
+  dealii::Vector<double> cell_residual;  // f_int - f_ext of the cell
+  dealii::Vector<double> cell_internal;  // f_int of the cell
+  std::vector<dealii::types::global_dof_index> dof_indices;
+  MaterialStatus status = MaterialStatus::kOk;
+  int unreliable_points = 0;
+  std::string failure;  // the reason of a failed point (the first in the cell)
+};
+
+}  // namespace
+
+// The cells are assembled in parallel with deal.II's WorkStream (TBB threads, after tutorial
+// step-9): each cell's material updates write only that cell's quadrature-point history, and the
+// copier adds the cell contributions in the cells' order, so the result is the same for any
+// number of threads, bit for bit. A failed point stops the assembly's result (the first failed
+// cell in that order is reported), not the other threads.
 MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, bool with_matrix,
                                std::string* message) {
-  dealii::FEValues<3> fe_values(fe_, cell_quadrature_,
-                                dealii::update_gradients | dealii::update_JxW_values);
-  dealii::FEFaceValues<3> fe_face_values(fe_, face_quadrature_,
-                                         dealii::update_values | dealii::update_quadrature_points |
-                                             dealii::update_normal_vectors |
-                                             dealii::update_JxW_values);
-
   const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
-  const unsigned int n_q_points = cell_quadrature_.size();
-  dealii::FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-  dealii::Vector<double> cell_residual(dofs_per_cell);
-  std::vector<dealii::types::global_dof_index> dof_indices(dofs_per_cell);
-  std::vector<SymmetricTensor2> strains(n_q_points);
-  std::vector<SymmetricTensor2> shape_strain(dofs_per_cell);
   dealii::Vector<double> internal_force(dof_handler_.n_dofs());
-
   residual_ = 0.0;
   if (with_matrix) tangent_matrix_ = 0.0;
   MaterialStatus status = MaterialStatus::kOk;
   int unreliable_points = 0;
+  bool failed = false;
 
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+  auto worker = [&](const typename dealii::DoFHandler<3>::active_cell_iterator& cell,
+                    AssemblyScratch& scratch, AssemblyCopy& copy) {
+    dealii::FEValues<3>& fe_values = scratch.fe_values;
     fe_values.reinit(cell);
-    cell->get_dof_indices(dof_indices);
-    cell_matrix = 0.0;
-    cell_residual = 0.0;
-    fe_values[kDisplacement].get_function_symmetric_gradients(u, strains);
+    cell->get_dof_indices(copy.dof_indices);
+    copy.cell_matrix = 0.0;
+    copy.cell_residual = 0.0;
+    copy.cell_internal = 0.0;
+    copy.status = MaterialStatus::kOk;
+    copy.unreliable_points = 0;
+    copy.failure.clear();
+    fe_values[kDisplacement].get_function_symmetric_gradients(u, scratch.strains);
     const std::vector<std::shared_ptr<PointHistory>> history = history_.get_data(cell);
+    const unsigned int n_q_points = fe_values.n_quadrature_points;
 
     for (unsigned int q = 0; q < n_q_points; ++q) {
       PointHistory& point = *history[q];
-      const SymmetricTensor2 increment = strains[q] - point.start.strain;
+      const SymmetricTensor2 increment = scratch.strains[q] - point.start.strain;
       const MaterialUpdate update = material_.update(point.start, increment, point.end);
       MaterialStatus point_status = update.status;
       std::string reason = update.message;
@@ -181,64 +224,75 @@ MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, boo
         reason = "non-finite stress or tangent";
       }
       if (point_status == MaterialStatus::kFailed) {
-        if (message) {
-          std::ostringstream out;
-          out << material_.name() << " update failed at cell " << cell->active_cell_index()
-              << ", quadrature point " << q << " (|strain increment| = " << increment.norm() << ")"
-              << (reason.empty() ? "" : ": " + reason);
-          *message = out.str();
-        }
-        last_unreliable_points_ = unreliable_points;
-        return MaterialStatus::kFailed;
+        std::ostringstream out;
+        out << material_.name() << " update failed at cell " << cell->active_cell_index()
+            << ", quadrature point " << q << " (|strain increment| = " << increment.norm() << ")"
+            << (reason.empty() ? "" : ": " + reason);
+        copy.failure = out.str();
+        copy.status = MaterialStatus::kFailed;
+        return;
       }
-      if (point_status == MaterialStatus::kUnreliable) ++unreliable_points;
-      status = worst(status, point_status);
+      if (point_status == MaterialStatus::kUnreliable) ++copy.unreliable_points;
+      copy.status = worst(copy.status, point_status);
 
       const double JxW = fe_values.JxW(q);
-      for (unsigned int i = 0; i < dofs_per_cell; ++i) {
-        shape_strain[i] = fe_values[kDisplacement].symmetric_gradient(i, q);
-      }
-      for (unsigned int i = 0; i < dofs_per_cell; ++i) {
-        cell_residual(i) += (shape_strain[i] * point.end.stress) * JxW;
-      }
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        scratch.shape_strain[i] = fe_values[kDisplacement].symmetric_gradient(i, q);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        copy.cell_internal(i) += (scratch.shape_strain[i] * point.end.stress) * JxW;
       if (with_matrix) {
         for (unsigned int j = 0; j < dofs_per_cell; ++j) {
-          const SymmetricTensor2 stress_j = update.tangent * shape_strain[j];
-          for (unsigned int i = 0; i < dofs_per_cell; ++i) {
-            cell_matrix(i, j) += (shape_strain[i] * stress_j) * JxW;
-          }
+          const SymmetricTensor2 stress_j = update.tangent * scratch.shape_strain[j];
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            copy.cell_matrix(i, j) += (scratch.shape_strain[i] * stress_j) * JxW;
         }
       }
     }
-    for (unsigned int i = 0; i < dofs_per_cell; ++i)
-      internal_force(dof_indices[i]) += cell_residual(i);
+    copy.cell_residual = copy.cell_internal;
 
     // External forces: f_ext = int N t dA on the traction faces (R = f_int - f_ext).
     for (const auto& face : cell->face_iterators()) {
       if (!face->at_boundary()) continue;
       for (const TractionCondition& condition : traction_conditions_) {
         if (face->boundary_id() != condition.boundary_id) continue;
-        fe_face_values.reinit(cell, face);
+        scratch.fe_face_values.reinit(cell, face);
         for (unsigned int q = 0; q < face_quadrature_.size(); ++q) {
-          const Tensor<1, 3> traction = condition.traction(fe_face_values.quadrature_point(q),
-                                                           fe_face_values.normal_vector(q), load);
-          for (unsigned int i = 0; i < dofs_per_cell; ++i) {
-            cell_residual(i) -=
-                (fe_face_values[kDisplacement].value(i, q) * traction) * fe_face_values.JxW(q);
-          }
+          const Tensor<1, 3> traction =
+              condition.traction(scratch.fe_face_values.quadrature_point(q),
+                                 scratch.fe_face_values.normal_vector(q), load);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            copy.cell_residual(i) -= (scratch.fe_face_values[kDisplacement].value(i, q) * traction) *
+                                     scratch.fe_face_values.JxW(q);
         }
       }
     }
+  };
 
-    if (with_matrix) {
-      constraints_.distribute_local_to_global(cell_matrix, cell_residual, dof_indices,
-                                              tangent_matrix_, residual_);
-    } else {
-      constraints_.distribute_local_to_global(cell_residual, dof_indices, residual_);
+  auto copier = [&](const AssemblyCopy& copy) {
+    if (failed) return;
+    if (copy.status == MaterialStatus::kFailed) {
+      failed = true;
+      if (message) *message = copy.failure;
+      return;
     }
-  }
-  internal_force_norm_ = internal_force.l2_norm();
+    unreliable_points += copy.unreliable_points;
+    status = worst(status, copy.status);
+    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      internal_force(copy.dof_indices[i]) += copy.cell_internal(i);
+    if (with_matrix) {
+      constraints_.distribute_local_to_global(copy.cell_matrix, copy.cell_residual,
+                                              copy.dof_indices, tangent_matrix_, residual_);
+    } else {
+      constraints_.distribute_local_to_global(copy.cell_residual, copy.dof_indices, residual_);
+    }
+  };
+
+  dealii::WorkStream::run(dof_handler_.begin_active(), dof_handler_.end(), worker, copier,
+                          AssemblyScratch(fe_, cell_quadrature_, face_quadrature_),
+                          AssemblyCopy(dofs_per_cell));
   last_unreliable_points_ = unreliable_points;
+  if (failed) return MaterialStatus::kFailed;
+  internal_force_norm_ = internal_force.l2_norm();
   if (options_.cut_on_unreliable && status == MaterialStatus::kUnreliable) {
     if (message) *message = std::to_string(unreliable_points) + " unreliable material update(s)";
   }

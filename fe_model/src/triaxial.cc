@@ -1,12 +1,16 @@
 // The triaxial boundary-value problem of triaxial.h on top of Solid.
 #include "fe_model/triaxial.h"
 
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <iomanip>
 #include <iostream>
 #include <stdexcept>
@@ -49,6 +53,21 @@ TriaxialStep measure(const Solid& solid, unsigned int step) {
   return row;
 }
 
+// u_x at the support points of the edge x = L, y = 0 (the outer face's radial displacement).
+std::vector<BulgePoint> bulge_profile(const Solid& solid, double L) {
+  std::map<dealii::types::global_dof_index, dealii::Point<3>> support;
+  dealii::DoFTools::map_dofs_to_support_points(dealii::StaticMappingQ1<3>::mapping,
+                                               solid.dof_handler(), support,
+                                               dealii::ComponentMask({true, false, false}));
+  std::map<double, double> profile;  // z -> u_x
+  for (const auto& [dof, x] : support)
+    if (std::abs(x[0] - L) < 1e-9 * L && std::abs(x[1]) < 1e-9 * L)
+      profile[x[2]] = solid.solution()[dof];
+  std::vector<BulgePoint> points;
+  for (const auto& [z, u] : profile) points.push_back({z, u});
+  return points;
+}
+
 std::string vtu_name(const std::string& prefix, unsigned int step) {
   char buffer[16];
   std::snprintf(buffer, sizeof buffer, "_%04u.vtu", step);
@@ -75,8 +94,10 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
   solid.add_displacement_condition({kZMin, {{false, false, true}}, zero});
   const double strain_end = options.axial_strain_end;
   solid.add_displacement_condition(
-      {kZMax, {{false, false, true}}, [strain_end, H](const dealii::Point<3>&, double load) {
-         dealii::Tensor<1, 3> u;
+      {kZMax,
+       {{options.rough_platens, options.rough_platens, true}},
+       [strain_end, H](const dealii::Point<3>&, double load) {
+         dealii::Tensor<1, 3> u;  // u_x = u_y = 0 where the platen is rough
          u[2] = -load * strain_end * H;  // compression positive eps_a -> downward displacement
          return u;
        }});
@@ -89,7 +110,14 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
 
   TriaxialResult result;
   result.steps.push_back(measure(solid, 0));
-  if (!options.vtu_prefix.empty()) solid.write_vtu(vtu_name(options.vtu_prefix, 0));
+  std::vector<std::string> vtu_files;
+  auto write_vtu = [&](unsigned int step) {
+    if (options.vtu_prefix.empty()) return;
+    const std::string name = vtu_name(options.vtu_prefix, step);
+    solid.write_vtu(name);
+    vtu_files.push_back(std::filesystem::path(name).filename().string());
+  };
+  write_vtu(0);
 
   for (unsigned int step = 1; step <= options.n_steps; ++step) {
     const double load = static_cast<double>(step) / options.n_steps;
@@ -113,11 +141,32 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
     }
     result.steps.push_back(row);
     result.reports.push_back(std::move(report));
-    if (!options.vtu_prefix.empty()) solid.write_vtu(vtu_name(options.vtu_prefix, step));
+    write_vtu(step);
   }
   result.completed = result.message.empty();
+  result.bulge = bulge_profile(solid, L);
   if (!options.csv_path.empty()) write_triaxial_csv(options.csv_path, result.steps);
+  if (!options.vtu_prefix.empty()) {
+    std::vector<double> times;
+    for (const TriaxialStep& row : result.steps) times.push_back(row.axial_strain);
+    write_pvd(options.vtu_prefix + ".pvd", vtu_files, times, "axial strain (compression positive)");
+  }
   return result;
+}
+
+void write_pvd(const std::string& path, const std::vector<std::string>& vtu_files,
+               const std::vector<double>& times, const std::string& time_meaning) {
+  if (vtu_files.size() != times.size())
+    throw std::invalid_argument("write_pvd: as many times as files are needed");
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot open " + path + " for writing");
+  out << "<?xml version=\"1.0\"?>\n<!-- timestep = " << time_meaning << " -->\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n"
+      << std::setprecision(10);
+  for (std::size_t i = 0; i < vtu_files.size(); ++i)
+    out << "  <DataSet timestep=\"" << times[i] << "\" file=\"" << vtu_files[i] << "\"/>\n";
+  out << "</Collection>\n</VTKFile>\n";
+  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 void write_triaxial_csv(const std::string& path, const std::vector<TriaxialStep>& steps) {

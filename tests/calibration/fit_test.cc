@@ -105,7 +105,7 @@ TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
   FitOptions options;
   options.stages = {Stage::kJoint};
   options.starts = 1;
-  options.max_iterations = 3;
+  options.max_iterations = 6;
   options.initial = truth;
   options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "k_F"};
   options.initial[fit_parameter_index("h0")] *= 2.0;

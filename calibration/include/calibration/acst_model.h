@@ -52,18 +52,54 @@ enum class UpdateStatus { kOk, kUnreliable, kFailed };
 /// Abbo & Sheng (2001). Both share the error measure, dyadic substeps and drift correction.
 enum class IntegrationScheme { kBogackiShampine, kModifiedEuler };
 
+/// kImplicit (the default): the elastic part in closed form, the crossing of the yield cone and
+/// the load reversal located explicitly, plastic substeps by backward Euler with Richardson
+/// extrapolation, derivatives by the implicit function theorem (acst_implicit.h). kExplicit: the
+/// explicit substepping of the first version, kept as the reference (`scheme` chooses the pair).
+enum class IntegrationMethod { kImplicit, kExplicit };
+
 struct IntegrationOptions {
-  IntegrationScheme scheme = IntegrationScheme::kBogackiShampine;
-  double tolerance = 1e-6;    // local relative error per substep (Sloan et al. 2001, STOL)
+  IntegrationMethod method = IntegrationMethod::kImplicit;
+  IntegrationScheme scheme = IntegrationScheme::kBogackiShampine;  ///< explicit only
+  /// Local error tolerance of the substeps (docs/model.md §4). Implicit: <= 0 (the default, the
+  /// FE setting) takes each increment in one second-order step, split only where the cone is
+  /// crossed or Newton fails, so that the update is a smooth function of the strain increment;
+  /// > 0 chooses the substeps so that the estimated error of the half-step solution stays below
+  /// it (the extrapolated result is more accurate still). Explicit: the relative error per
+  /// substep of Sloan et al. (2001, STOL), must be > 0.
+  double tolerance = 0.0;
+  /// Implicit without error control: an update with a step whose error estimate exceeds this is
+  /// reported kUnreliable (an absurd increment, e.g. a 30 % shear in one step; the FE cuts such
+  /// steps with SolverOptions::cut_on_unreliable).
+  double max_step_error = 1e-2;
+  /// Implicit: the first plastic substep of a fresh loading (alpha = alpha_in: first loading, or
+  /// after a load reversal) is 2^-loading_grading of the plastic segment, the next ones double;
+  /// they resolve the knee of the hardening law there (0: no grading).
+  int loading_grading = 6;
   double min_substep = 1e-6;  // smallest substep, as a fraction of the strain increment
   int max_substeps = 100000;  // attempted substeps per update, accepted or rejected
   double min_pressure = 100.0 /*Pa*/;
-  /// With T = ceres::Jet: also reject substeps whose derivative parts are unstable (relative
-  /// error estimate above 1 %, Bogacki-Shampine only, down to 1/4096 of the segment).
+  /// Explicit with T = ceres::Jet: also reject substeps whose derivative parts are unstable
+  /// (relative error estimate above 1 %, Bogacki-Shampine only, down to 1/4096 of the segment).
   /// update_with_strain_derivatives and update_with_tangent switch it on (strain seeds excite
-  /// the stiff asymmetric lateral mode of a triaxial path); the fits switch it on for their
-  /// parameter derivatives. Off, the substeps of a Jet update are those of the double update.
+  /// the stiff asymmetric lateral mode of a triaxial path). Off, the substeps of a Jet update are
+  /// those of the double update. The implicit integration needs no guard (its derivatives come
+  /// from the converged local systems).
   bool guard_derivatives = false;
+
+  /// The explicit reference integration at the given tolerance.
+  static IntegrationOptions explicit_reference(double tolerance) {
+    IntegrationOptions o;
+    o.method = IntegrationMethod::kExplicit;
+    o.tolerance = tolerance;
+    return o;
+  }
+  /// The implicit integration with error control at the given tolerance.
+  static IntegrationOptions implicit_controlled(double tolerance) {
+    IntegrationOptions o;
+    o.tolerance = tolerance;
+    return o;
+  }
 };
 
 /// The value (non-derivative part) of a scalar.
@@ -160,3 +196,17 @@ bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuanti
 }  // namespace calibration
 
 #include "calibration/acst_model_impl.h"
+#include "calibration/acst_implicit.h"
+
+namespace calibration {
+
+template <typename T>
+UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
+                          const Tensor<T>& strain_increment, State<T>& end,
+                          const IntegrationOptions& options, long* substeps) {
+  return options.method == IntegrationMethod::kImplicit
+             ? update_state_implicit(par, start, strain_increment, end, options, substeps)
+             : update_state_explicit(par, start, strain_increment, end, options, substeps);
+}
+
+}  // namespace calibration

@@ -396,20 +396,17 @@ bool correct_drift(const Parameters<T>& par, State<T>& s) {
   return std::abs(value_of(relative_yield_function(par, s))) <= 10.0 * kYieldTolerance;
 }
 
-/// Fraction t in (0, 1] of an elastic step deps at which f crosses zero (Pegasus method, Sloan
-/// et al. 2001, Algorithm 2), f0 < 0 < f1 the values at t = 0 and t = 1.
-template <typename T>
-double elastic_intersection(const Parameters<T>& par, const State<T>& start, const Tensor<T>& deps,
-                            double f0, double f1, const IntegrationOptions& options) {
-  double t0 = 0.0, t1 = 1.0;
-  double t = 1.0;
+/// The root t in [t0, t1] of f, f(t0) < 0 < f(t1), by the Pegasus method (Sloan et al. 2001,
+/// Algorithm 2), to |f| <= tolerance; f(t) returns false where it cannot be evaluated (t is then
+/// returned as it is).
+template <typename F>
+double pegasus_root(F&& f, double t0, double f0, double t1, double f1, double tolerance) {
+  double t = t1;
   for (int iteration = 0; iteration < 60; ++iteration) {
     t = t1 - f1 * (t1 - t0) / (f1 - f0);
-    State<T> at;
-    double error = 0.0;
-    if (!integration_step(par, start, Tensor<T>(T(t) * deps), false, at, error, options)) return t;
-    const double ft = value_of(relative_yield_function(par, at));
-    if (std::abs(ft) <= 0.01 * kYieldTolerance) return t;
+    double ft = 0.0;
+    if (!f(t, ft)) return t;
+    if (std::abs(ft) <= tolerance) return t;
     if (ft * f0 < 0.0) {
       t1 = t0;
       f1 = f0;
@@ -422,15 +419,32 @@ double elastic_intersection(const Parameters<T>& par, const State<T>& start, con
   return t;
 }
 
+/// Fraction t in (0, 1] of an elastic step deps at which f crosses zero, f0 < 0 < f1 the values at
+/// t = 0 and t = 1.
+template <typename T>
+double elastic_intersection(const Parameters<T>& par, const State<T>& start, const Tensor<T>& deps,
+                            double f0, double f1, const IntegrationOptions& options) {
+  auto f = [&](double t, double& ft) {
+    State<T> at;
+    double error = 0.0;
+    if (!integration_step(par, start, Tensor<T>(T(t) * deps), false, at, error, options))
+      return false;
+    ft = value_of(relative_yield_function(par, at));
+    return true;
+  };
+  return pegasus_root(f, 0.0, f0, 1.0, f1, 0.01 * kYieldTolerance);
+}
+
 }  // namespace detail
 
 /// Explicit substepping (Bogacki-Shampine 3(2) or modified Euler) with error control and drift correction (Sloan, Abbo &
 /// Sheng 2001), over dyadic substeps (ours): docs/model.md §4.
 template <typename T>
-UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
-                          const Tensor<T>& strain_increment, State<T>& end,
-                          const IntegrationOptions& options, long* substeps) {
+UpdateStatus update_state_explicit(const Parameters<T>& par, const State<T>& start,
+                                   const Tensor<T>& strain_increment, State<T>& end,
+                                   const IntegrationOptions& options, long* substeps) {
   end = start;
+  if (!(options.tolerance > 0.0)) return UpdateStatus::kFailed;  // explicit needs a tolerance
   if (!detail::is_finite(start) || !detail::is_finite(strain_increment)) return UpdateStatus::kFailed;
   if (!(value_of(start.stress.trace()) / 3.0 >= options.min_pressure)) return UpdateStatus::kFailed;
 

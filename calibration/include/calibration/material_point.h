@@ -36,10 +36,10 @@ struct DriverOptions {
   IntegrationOptions integration = tight_integration();
   int max_newton_iterations = 30;
   double stress_tolerance = 1e-8;  // Newton converged when |residual| <= this * p
+  /// The implicit integration with error control at 1e-7: within 1e-7 of the converged path
+  /// (docs/model.md §4).
   static IntegrationOptions tight_integration() {
-    IntegrationOptions o;
-    o.tolerance = 1e-9;
-    return o;
+    return IntegrationOptions::implicit_controlled(1e-7);
   }
 };
 

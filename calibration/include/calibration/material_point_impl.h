@@ -144,7 +144,7 @@ UpdateStatus mixed_increment(const Parameters<T>& par, const State<T>& start,
   bool polishing = false;  // converged; one more step is being tried
   double converged_largest = 0.0;
   Tensor<double> converged_deps = Tensor<double>::Zero();
-  State<double> converged_end;
+  State<double> converged_end = start_value;
   UpdateStatus converged_status = UpdateStatus::kOk;
   for (int iteration = 0; iteration < options.max_newton_iterations; ++iteration) {
     bool fresh = false;

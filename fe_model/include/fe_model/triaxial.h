@@ -6,8 +6,11 @@
 //   domain [0, L] x [0, L] x [0, H], n_x x n_y x n_z Q1 hexahedra;
 //   x = 0, y = 0, z = 0: symmetry, zero normal displacement (tangential free);
 //   x = L, y = L:        confining pressure p0, a traction -p0 n (constant);
-//   z = H:               prescribed axial displacement u_z = -eps_a H (tangential free: a smooth
-//                        platen), eps_a growing linearly with the load factor.
+//   z = H:               prescribed axial displacement u_z = -eps_a H, eps_a growing linearly
+//                        with the load factor; tangential free (a smooth platen), or held
+//                        (u_x = u_y = 0: a rough platen, TriaxialOptions::rough_platens; with the
+//                        symmetry plane z = 0 both platens of the specimen are rough and it bulges
+//                        at mid-height).
 // Initial state: isotropically consolidated, stress -p0 I (deal.II sign) at zero displacement,
 // in equilibrium with the confining traction.
 //
@@ -36,9 +39,12 @@ struct TriaxialOptions {
   double confining_pressure = 100e3;  ///< p0 [Pa], compression positive, held constant
   double axial_strain_end = 0.01;     ///< final axial strain, compression positive
   unsigned int n_steps = 10;          ///< equal axial strain increments
+  bool rough_platens = false;  ///< the top face held radially (see above); smooth otherwise
   SolverOptions solver;
   std::string csv_path;    ///< if not empty: one CSV row per converged step (and the initial state)
-  std::string vtu_prefix;  ///< if not empty: <prefix>_<step, 4 digits>.vtu per converged step
+  /// If not empty: <prefix>_<step, 4 digits>.vtu per converged step and <prefix>.pvd, the
+  /// ParaView collection of them with time = axial strain.
+  std::string vtu_prefix;
 };
 
 /// One converged load step, compression positive.
@@ -60,11 +66,19 @@ struct TriaxialStep {
   std::vector<double> residual_norms;
 };
 
+/// The radial displacement of the outer face along its edge x = L, y = 0 (u_x, outward
+/// positive) at the last converged step: the bulging profile.
+struct BulgePoint {
+  double z = 0.0;                    ///< [m], 0 at mid-height of the specimen
+  double radial_displacement = 0.0;  ///< [m]
+};
+
 struct TriaxialResult {
   bool completed = false;           ///< all steps converged
   std::string message;              ///< why not (empty if completed)
   std::vector<TriaxialStep> steps;  ///< converged steps only (never NaN), the initial state first
   std::vector<StepReport> reports;  ///< one per attempted step, with every Newton log
+  std::vector<BulgePoint> bulge;    ///< ascending z
 };
 
 /// Runs the test. Throws std::invalid_argument for bad options and std::runtime_error if an output
@@ -73,6 +87,11 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
 
 /// Writes the CSV (header + rows) of `steps`, compression positive, SI units.
 void write_triaxial_csv(const std::string& path, const std::vector<TriaxialStep>& steps);
+
+/// Writes a ParaView collection (.pvd) of the files `vtu_files` (names as they are to appear in
+/// it, relative to the .pvd's folder) with the given times.
+void write_pvd(const std::string& path, const std::vector<std::string>& vtu_files,
+               const std::vector<double>& times, const std::string& time_meaning);
 
 }  // namespace fe_model
 

@@ -1,0 +1,106 @@
+// Cost of one ACST stress update with and without its consistent tangent (issue 14), for the two
+// integrations in one run: the implicit one (the FE default: one second-order step per
+// increment; and with error control at 1e-3) against the explicit reference at its former FE
+// default (tolerance 1e-6, tangent by Jets through the substeps).
+//
+// Cases (Toyoura-like parameters of docs/model.md, p0 = 100 kPa, F0 = 0.3 n_c):
+//   plastic    a medium-dense specimen (e0 = 0.80) at 1 % drained axial strain, on the yield
+//              surface, loaded by a general 3D strain increment of 5e-4 or 3e-3 (axial part);
+//   crossing   the isotropic specimen, first loading by the same 5e-4 increment: the elastic
+//              part in the cone, the crossing, then plastic.
+//
+//   model_update --benchmark_repetitions=10 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+
+#include "calibration/acst_model.h"
+#include "calibration/material_point.h"
+
+namespace {
+
+using calibration::IntegrationOptions;
+using calibration::State;
+using calibration::Tensor;
+
+calibration::Parameters<double> toyoura() {
+  return {125.0, 0.05, 1.25, 0.712, 0.934, 0.019, 0.7, 0.01,
+          7.05,  0.968, 1.1, 0.704, 3.5,  0.1,   5.0};
+}
+
+State<double> isotropic() {
+  return calibration::isotropic_state(100e3, 0.80, calibration::triaxial_deviator(0.3));
+}
+
+State<double> plastic() {
+  static const State<double> s =
+      calibration::drained_triaxial(toyoura(), isotropic(), 0.01, 50).state;
+  return s;
+}
+
+Tensor<double> increment(double axial) {
+  Tensor<double> d;
+  d << -0.3, 0.1, -0.05,  //
+      0.1, -0.25, 0.08,   //
+      -0.05, 0.08, 1.0;
+  return axial * d;
+}
+
+IntegrationOptions integration(int which) {
+  switch (which) {
+    case 0:
+      return IntegrationOptions();  // implicit, FE default
+    case 1:
+      return IntegrationOptions::implicit_controlled(1e-3);
+    default:
+      return IntegrationOptions::explicit_reference(1e-6);
+  }
+}
+
+const char* integration_name(int which) {
+  return which == 0 ? "implicit" : which == 1 ? "implicit_tol1e-3" : "explicit_tol1e-6";
+}
+
+// state: 0 plastic, 1 isotropic (crossing); size in 1e-4 of axial strain.
+void run(benchmark::State& bench, bool with_tangent) {
+  const int which = static_cast<int>(bench.range(0));
+  const State<double> start = bench.range(1) == 0 ? plastic() : isotropic();
+  const Tensor<double> deps = increment(1e-4 * static_cast<double>(bench.range(2)));
+  const IntegrationOptions options = integration(which);
+  const calibration::Parameters<double> par = toyoura();
+  State<double> end;
+  Eigen::Matrix<double, 9, 9> tangent;
+  long substeps = 0;
+  calibration::update_state(par, start, deps, end, options, &substeps);
+  for (auto _ : bench) {
+    const calibration::UpdateStatus status =
+        with_tangent ? calibration::update_with_tangent(par, start, deps, end, tangent, options)
+                     : calibration::update_state(par, start, deps, end, options);
+    benchmark::DoNotOptimize(status);
+    benchmark::DoNotOptimize(end.stress.data());
+    benchmark::DoNotOptimize(tangent.data());
+  }
+  bench.SetLabel(std::string(integration_name(which)) +
+                 (bench.range(1) == 0 ? " plastic" : " crossing") + " substeps=" +
+                 std::to_string(substeps));
+}
+
+void BM_Update(benchmark::State& bench) { run(bench, false); }
+void BM_UpdateWithTangent(benchmark::State& bench) { run(bench, true); }
+
+// {integration, state, axial increment in 1e-4}
+void cases(benchmark::internal::Benchmark* b) {
+  for (int which = 0; which < 3; ++which) {
+    b->Args({which, 0, 5});
+    b->Args({which, 0, 30});
+    b->Args({which, 1, 5});
+  }
+  b->Unit(benchmark::kMicrosecond);
+}
+
+BENCHMARK(BM_Update)->Apply(cases);
+BENCHMARK(BM_UpdateWithTangent)->Apply(cases);
+
+}  // namespace
+
+BENCHMARK_MAIN();
