@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace calibration {
 namespace implicit_detail {
@@ -380,11 +381,20 @@ double crossing_bracket(const Parameters<double>& par, const State<double>& s,
 UpdateStatus integrate_values(const Parameters<double>& par, const State<double>& start,
                               const Tensor<double>& strain_increment,
                               const IntegrationOptions& options, State<double>& end, Tape* tape,
-                              long* substeps) {
+                              long* substeps, std::string* reason) {
   end = start;
   if (tape) tape->entries.clear();
-  if (!detail::is_finite(start) || !detail::is_finite(strain_increment)) return UpdateStatus::kFailed;
-  if (!(start.stress.trace() / 3.0 >= options.min_pressure)) return UpdateStatus::kFailed;
+  auto fail = [&](const std::string& why) {
+    if (reason) *reason = why;
+    return UpdateStatus::kFailed;
+  };
+  auto where = [](double fraction) { return " (at fraction " + std::to_string(fraction) + ")"; };
+  if (!detail::is_finite(start) || !detail::is_finite(strain_increment))
+    return fail("non-finite start state or strain increment");
+  if (!(start.stress.trace() / 3.0 >= options.min_pressure))
+    return fail("mean stress " + std::to_string(start.stress.trace() / 3.0) +
+                " Pa at the start is below the minimum " + std::to_string(options.min_pressure) +
+                " Pa");
 
   State<double> s = start;
   Tensor<double> segment = strain_increment;
@@ -411,7 +421,9 @@ UpdateStatus integrate_values(const Parameters<double>& par, const State<double>
   };
 
   for (int attempts = 0; done < 1.0; ++attempts) {
-    if (attempts >= options.max_substeps) return UpdateStatus::kFailed;
+    if (attempts >= options.max_substeps)
+      return fail("max_substeps (" + std::to_string(options.max_substeps) + ") exhausted" +
+                  where(done));
     if (substeps) ++*substeps;
     step = std::min(step, 1.0 - done);
     const bool can_shrink = 0.5 * step >= min_step;
@@ -421,11 +433,14 @@ UpdateStatus integrate_values(const Parameters<double>& par, const State<double>
     State<double> trial;
     if (!elastic_path(par, s, deps, trial)) {
       if (can_shrink) { step *= 0.5; continue; }
-      return UpdateStatus::kFailed;
+      return fail("the elastic response reaches p <= 0 or a void ratio outside (0, 2.97)" +
+                  where(done));
     }
     const double f1 = relative_yield_function(par, trial);
     if (f1 <= detail::kYieldTolerance) {  // ends inside the cone (or on it): elastic
-      if (trial.stress.trace() / 3.0 < options.min_pressure) return UpdateStatus::kFailed;
+      if (trial.stress.trace() / 3.0 < options.min_pressure)
+        return fail("mean stress falls below the minimum " + std::to_string(options.min_pressure) +
+                    " Pa" + where(done));
       next_entry(TapeEntry::Kind::kElastic);
       s = trial;
       done += step;
@@ -442,7 +457,8 @@ UpdateStatus integrate_values(const Parameters<double>& par, const State<double>
     if (t_low >= 0.0) {
       const double t = elastic_crossing(par, s, deps, t_low, f_low, 1.0, f1);
       State<double> at;
-      if (!elastic_path(par, s, Tensor<double>(t * deps), at)) return UpdateStatus::kFailed;
+      if (!elastic_path(par, s, Tensor<double>(t * deps), at))
+        return fail("the elastic path to the yield cone cannot be evaluated");
       TapeEntry& entry = next_entry(TapeEntry::Kind::kCrossing);
       entry.done = done;
       entry.t = t;
@@ -486,7 +502,7 @@ UpdateStatus integrate_values(const Parameters<double>& par, const State<double>
     if (!plastic_step(par, from, deps, tape && tape->with_inputs, entry, next, error)) {
       take_back();
       if (can_shrink) { step *= 0.5; continue; }
-      return UpdateStatus::kFailed;
+      return fail("the backward-Euler step does not converge at the minimum substep" + where(done));
     }
     if (error_control && error > options.tolerance) {
       if (can_shrink) {
@@ -496,12 +512,22 @@ UpdateStatus integrate_values(const Parameters<double>& par, const State<double>
         continue;
       }
       unreliable = true;
+      if (reason)
+        *reason = "a substep of the minimum size has an error estimate " + std::to_string(error) +
+                  " above the tolerance";
     }
     // Without error control the step is kept whatever its error (the update stays a smooth
     // function of the increment), but one beyond max_step_error is reported.
-    if (!error_control && error > options.max_step_error) unreliable = true;
-    if (!detail::is_finite(next) || next.stress.trace() / 3.0 < options.min_pressure)
-      return UpdateStatus::kFailed;
+    if (!error_control && error > options.max_step_error) {
+      unreliable = true;
+      if (reason)
+        *reason = "error estimate " + std::to_string(error) + " above max_step_error " +
+                  std::to_string(options.max_step_error) + ": the increment is too large";
+    }
+    if (!detail::is_finite(next)) return fail("non-finite state after a plastic step");
+    if (next.stress.trace() / 3.0 < options.min_pressure)
+      return fail("mean stress falls below the minimum " + std::to_string(options.min_pressure) +
+                  " Pa" + where(done));
     s = next;
     done += step;
     on_surface_forced = false;
@@ -518,8 +544,9 @@ UpdateStatus integrate_values(const Parameters<double>& par, const State<double>
       step = std::min(1.0, 2.0 * step);
     }
   }
-  if (!detail::is_finite(s)) return UpdateStatus::kFailed;
+  if (!detail::is_finite(s)) return fail("non-finite end state");
   end = s;
+  if (!unreliable && reason) reason->clear();
   return unreliable ? UpdateStatus::kUnreliable : UpdateStatus::kOk;
 }
 

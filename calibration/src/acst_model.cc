@@ -1,16 +1,22 @@
 #include "calibration/acst_model.h"
 
+#include <ceres/jet.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "calibration/strain_derivatives.h"
 
 namespace calibration {
 
 namespace {
 
-// Voigt order of the 6 independent strain components seeded as Jet derivatives.
+// Voigt order of the 6 independent strain components seeded as Jet derivatives, and the Voigt
+// index of each tensor component.
 constexpr int kVoigtRow[6] = {0, 1, 2, 0, 1, 0};
 constexpr int kVoigtCol[6] = {0, 1, 2, 1, 2, 2};
+constexpr int kVoigtIndex[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
 
 }  // namespace
 
@@ -36,35 +42,42 @@ UpdateStatus update_with_strain_derivatives(const Parameters<double>& par,
 UpdateStatus update_with_tangent(const Parameters<double>& par, const State<double>& start,
                                  const Tensor<double>& strain_increment, State<double>& end,
                                  Eigen::Matrix<double, 9, 9>& tangent,
-                                 const IntegrationOptions& options) {
+                                 const IntegrationOptions& options, UpdateReport* report) {
   tangent.setZero();
   Eigen::Matrix<double, 6, 6> voigt;  // d sigma_a / d eps_b, shear seeds moving eps_kl and eps_lk
   UpdateStatus status = UpdateStatus::kFailed;
+  long substeps = 0;
+  std::string reason;
   if (options.method == IntegrationMethod::kImplicit) {
     thread_local implicit_detail::Tape tape;  // reused: no allocation per update
     tape.with_inputs = true;
     status = implicit_detail::integrate_values(par, start, strain_increment, options, end, &tape,
-                                               nullptr);
-    if (status == UpdateStatus::kFailed) return status;
-    if (!implicit_detail::replay_tangent(par, start, strain_increment, tape, voigt)) {
+                                               &substeps, &reason);
+    if (status != UpdateStatus::kFailed &&
+        !implicit_detail::replay_tangent(par, start, strain_increment, tape, voigt)) {
       end = start;
-      return UpdateStatus::kFailed;
+      status = UpdateStatus::kFailed;
+      reason = "the tangent cannot be evaluated along the update";
     }
   } else {
     State<StrainJet> end_jet;
     status = update_with_strain_derivatives(par, start, strain_increment, end_jet, options);
     end = cast_state<double>(end_jet);
-    if (status == UpdateStatus::kFailed) return status;
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) voigt(a, b) = end_jet.stress(kVoigtRow[a], kVoigtCol[a]).v[b];
+    if (status == UpdateStatus::kFailed) reason = "the explicit integration failed";
+    if (status == UpdateStatus::kUnreliable) reason = "a minimum substep above the tolerance";
   }
+  if (report) {
+    report->substeps = substeps;
+    report->message = reason;
+  }
+  if (status == UpdateStatus::kFailed) return status;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      const int row = i <= j ? (i == j ? i : (i == 0 ? (j == 1 ? 3 : 5) : 4))
-                             : (j == 0 ? (i == 1 ? 3 : 5) : 4);
       for (int k = 0; k < 6; ++k) {
         const int a = kVoigtRow[k], b = kVoigtCol[k];
-        const double d = voigt(row, k);
+        const double d = voigt(kVoigtIndex[i][j], k);
         if (a == b) {
           tangent(3 * i + j, 3 * a + b) = d;
         } else {  // d/d(eps_ab) with eps_ab = eps_ba moving together: half to each
@@ -74,6 +87,18 @@ UpdateStatus update_with_tangent(const Parameters<double>& par, const State<doub
       }
     }
   return status;
+}
+
+const char* to_string(UpdateStatus status) {
+  switch (status) {
+    case UpdateStatus::kOk:
+      return "ok";
+    case UpdateStatus::kUnreliable:
+      return "unreliable";
+    case UpdateStatus::kFailed:
+      return "failed";
+  }
+  return "unknown";
 }
 
 void validate_parameters(const Parameters<double>& par) {

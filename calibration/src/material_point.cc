@@ -47,16 +47,4 @@ std::vector<PathStep> parse_path_table(const std::string& text) {
   return steps;
 }
 
-const char* to_string(UpdateStatus status) {
-  switch (status) {
-    case UpdateStatus::kOk:
-      return "ok";
-    case UpdateStatus::kUnreliable:
-      return "unreliable";
-    case UpdateStatus::kFailed:
-      return "failed";
-  }
-  return "unknown";
-}
-
 }  // namespace calibration

@@ -2,7 +2,10 @@
 #include "fe_model/acst_material.h"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace fe_model {
 namespace {
@@ -33,6 +36,19 @@ Eigen::Matrix3d unpack(const std::vector<double>& v, std::size_t offset) {
   return m;
 }
 
+// The strain increment and the start state, for failure messages.
+std::string describe(const SymmetricTensor2& increment, const calibration::State<double>& s) {
+  std::ostringstream out;
+  out << std::setprecision(6) << "strain increment (tension positive; 11 22 33 12 13 23) ["
+      << increment[0][0] << ' ' << increment[1][1] << ' ' << increment[2][2] << ' '
+      << increment[0][1] << ' ' << increment[0][2] << ' ' << increment[1][2]
+      << "]; start state (compression positive): stress [" << s.stress(0, 0) << ' '
+      << s.stress(1, 1) << ' ' << s.stress(2, 2) << ' ' << s.stress(0, 1) << ' ' << s.stress(0, 2)
+      << ' ' << s.stress(1, 2) << "] Pa, void ratio " << s.void_ratio << ", |alpha| "
+      << s.alpha.norm() << ", |F| " << s.fabric.norm();
+  return out.str();
+}
+
 MaterialStatus convert(calibration::UpdateStatus status) {
   switch (status) {
     case calibration::UpdateStatus::kOk:
@@ -51,9 +67,13 @@ AcstMaterial::AcstMaterial(const calibration::Parameters<double>& parameters,
                            const AcstInitialState& initial_state,
                            const calibration::IntegrationOptions& options)
     : parameters_(parameters), initial_(initial_state), options_(options) {
-  if (!(initial_state.void_ratio > 0.0)) {
-    throw std::invalid_argument("AcstMaterial: initial void ratio must be positive");
-  }
+  calibration::validate_parameters(parameters);  // throws, naming the parameter
+  if (!(initial_state.void_ratio > 0.0 && initial_state.void_ratio < 2.97))
+    throw std::invalid_argument("AcstMaterial: initial void ratio " +
+                                std::to_string(initial_state.void_ratio) +
+                                " is not physical: it must be in (0, 2.97)");
+  if (!initial_state.fabric.allFinite())
+    throw std::invalid_argument("AcstMaterial: the initial fabric is not finite");
 }
 
 calibration::State<double> AcstMaterial::to_model(const PointState& state) {
@@ -103,13 +123,15 @@ MaterialUpdate AcstMaterial::update(const PointState& start,
   calibration::State<double> model_end = model_start;
   Eigen::Matrix<double, 9, 9> D;
   const Eigen::Matrix3d increment = -to_eigen(strain_increment);  // -> compression positive
-  const calibration::UpdateStatus status =
-      calibration::update_with_tangent(parameters_, model_start, increment, model_end, D, options_);
+  calibration::UpdateReport report;
+  const calibration::UpdateStatus status = calibration::update_with_tangent(
+      parameters_, model_start, increment, model_end, D, options_, &report);
 
   MaterialUpdate result;
   result.status = convert(status);
   if (result.status == MaterialStatus::kFailed) {
-    result.message = "calibration::update_with_tangent failed";
+    result.message = "ACST update failed: " + report.message + "; " +
+                     describe(strain_increment, model_start);
     end = start;  // never hand NaN to the caller
     return result;
   }
@@ -127,9 +149,8 @@ MaterialUpdate AcstMaterial::update(const PointState& start,
           result.tangent[i][j][k][l] = 0.25 * (D(row_ij, col_kl) + D(row_ij, col_lk) +
                                                D(row_ji, col_kl) + D(row_ji, col_lk));
         }
-  if (result.status == MaterialStatus::kUnreliable) {
-    result.message = "calibration::update_with_tangent: unreliable (substepping tolerance not met)";
-  }
+  if (result.status == MaterialStatus::kUnreliable)
+    result.message = "ACST update unreliable: " + report.message;
   return result;
 }
 

@@ -278,7 +278,7 @@ struct Tape {
 UpdateStatus integrate_values(const Parameters<double>& par, const State<double>& start,
                               const Tensor<double>& strain_increment,
                               const IntegrationOptions& options, State<double>& end, Tape* tape,
-                              long* substeps);
+                              long* substeps, std::string* reason = nullptr);
 
 /// A converged plastic step lifted to the scalar T: values from the solution, derivative parts by
 /// the implicit function theorem, dx = -J^-1 dR, dR the derivative parts of the residual at the

@@ -6,15 +6,17 @@
 //
 // Conventions: compression positive (stress, strain and their increments); stress in Pa; the
 // shear components of strain tensors are tensor components (eps_xy), not engineering (gamma_xy).
-// Everything that depends on the scalar type is a template on T (double, ceres::Jet<...>): the same
-// code gives the stress (double), derivatives w.r.t. parameters (Jets seeded on parameters) and
-// the consistent tangent (Jets seeded on the strain increment).
+// Everything that depends on the scalar type is a template on T (double, or a forward-mode dual
+// number with the value in .a and the derivatives in .v, such as ceres::Jet): the same code gives
+// the stress (double) and derivatives w.r.t. parameters (Jets seeded on parameters). This header
+// does not include Ceres: it is the public interface of the installed sffcal::model.
 #pragma once
 
 #include <Eigen/Core>
-#include <ceres/jet.h>
 
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace calibration {
@@ -102,12 +104,18 @@ struct IntegrationOptions {
   }
 };
 
-/// The value (non-derivative part) of a scalar.
+/// The value (non-derivative part) of a scalar: the number itself, or the .a of a dual number.
 inline double value_of(double x) { return x; }
-template <typename U, int N>
-double value_of(const ceres::Jet<U, N>& x) {
+template <typename J, typename = decltype(std::declval<const J&>().a)>
+double value_of(const J& x) {
   return value_of(x.a);
 }
+
+/// Why an update is not kOk, and what it cost (filled by the double updates when given).
+struct UpdateReport {
+  long substeps = 0;    ///< substeps attempted, accepted or rejected
+  std::string message;  ///< empty for kOk
+};
 
 /// Strain-driven update: strain_increment is compression positive (de_v = tr > 0 compacts).
 /// If substeps is given, the substeps attempted (accepted or rejected) are added to it.
@@ -116,27 +124,20 @@ UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
                           const Tensor<T>& strain_increment, State<T>& end,
                           const IntegrationOptions& options = {}, long* substeps = nullptr);
 
-/// Consistent (algorithmic) tangent d(stress_end)/d(strain_increment), via Jets seeded on the
-/// 6 independent strain components; D(3*i+j, 3*k+l) = d sigma_ij / d eps_kl (symmetrised: the
-/// derivative w.r.t. eps_kl and eps_lk are equal, each half of the engineering-shear derivative),
-/// so that d sigma_ij = sum_kl D(3i+j,3k+l) d eps_kl for symmetric d eps. [Pa]
+/// Consistent (algorithmic) tangent d(stress_end)/d(strain_increment): for the implicit
+/// integration by sensitivities carried along its operations, for the explicit one by Jets seeded
+/// on the 6 independent strain components. D(3*i+j, 3*k+l) = d sigma_ij / d eps_kl (symmetrised:
+/// the derivatives w.r.t. eps_kl and eps_lk are equal, each half of the engineering-shear
+/// derivative), so that d sigma_ij = sum_kl D(3i+j,3k+l) d eps_kl for symmetric d eps. [Pa]
+/// With a report: why the status is not kOk, and the substeps.
 UpdateStatus update_with_tangent(const Parameters<double>& par, const State<double>& start,
                                  const Tensor<double>& strain_increment, State<double>& end,
                                  Eigen::Matrix<double, 9, 9>& tangent,
-                                 const IntegrationOptions& options = {});
+                                 const IntegrationOptions& options = {},
+                                 UpdateReport* report = nullptr);
 
-/// Jet seeded on the 6 independent strain components (Voigt xx, yy, zz, xy, yz, xz; each shear
-/// seed moves eps_ij and eps_ji together).
-using StrainJet = ceres::Jet<double, 6>;
-
-/// The update with every state variable differentiated w.r.t. the 6 strain components (the raw
-/// form of update_with_tangent; the material-point driver uses it for its Newton matrix and for
-/// the chain rule of parameter derivatives). end.x.a are the values, end.x.v[k] = d x / d eps_k.
-UpdateStatus update_with_strain_derivatives(const Parameters<double>& par,
-                                            const State<double>& start,
-                                            const Tensor<double>& strain_increment,
-                                            State<StrainJet>& end,
-                                            const IntegrationOptions& options = {});
+/// "ok", "unreliable" or "failed".
+const char* to_string(UpdateStatus status);
 
 /// Throws std::runtime_error naming the first non-physical parameter.
 void validate_parameters(const Parameters<double>& par);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "calibration/acst_model.h"
+#include "calibration/strain_derivatives.h"
 
 namespace calibration {
 
@@ -128,8 +129,6 @@ PathResult<T> general_path(const Parameters<T>& par, const State<T>& initial,
 /// Voigt order, each "e:<strain increment>" or "s:<target stress in Pa>". Throws
 /// std::runtime_error naming the line.
 std::vector<PathStep> parse_path_table(const std::string& text);
-
-const char* to_string(UpdateStatus status);
 
 }  // namespace calibration
 
