@@ -8,3 +8,5 @@ cd "$(dirname "$0")/.."
 # not spin, or the oversubscribed cores spend their time spinning.
 export OMP_WAIT_POLICY=PASSIVE
 ctest --test-dir build --output-on-failure --parallel "$(nproc)" --timeout 600
+# The installed package, as an FE program outside this tree links it (examples/external_fe).
+./scripts/test_install.sh

@@ -41,7 +41,7 @@ Parameters<double> read_parameters_json(const std::string& path) {
   Json root;
   try {
     in >> root;
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // syntax errors and numbers out of range (1e400)
     fail(path, std::string("is not valid JSON: ") + e.what());
   }
   if (!root.is_object()) fail(path, "the top level must be an object");

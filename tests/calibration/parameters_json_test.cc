@@ -110,6 +110,17 @@ TEST(ParametersJson, NonPhysicalValuesAreNamed) {
   EXPECT_NE(unit.find("'parameters.G0.unit'"), std::string::npos) << unit;
   const std::string text = read_error(valid_text("c", "{\"value\": \"0.7\", \"unit\": \"1\"}"));
   EXPECT_NE(text.find("'parameters.c.value' must be a number"), std::string::npos) << text;
+  // Overflowing and not-a-number values: refused at load time, naming the file and the key.
+  const std::string huge = read_error(valid_text("h0", "{\"value\": 1e400, \"unit\": \"1\"}"));
+  EXPECT_NE(huge.find("number overflow parsing '1e400'"), std::string::npos) << huge;
+  EXPECT_NE(huge.find(temp_path("bad")), std::string::npos) << huge;
+  const std::string nan = read_error(valid_text("k_F", "{\"value\": NaN, \"unit\": \"1\"}"));
+  EXPECT_NE(nan.find(temp_path("bad")), std::string::npos) << nan;
+  EXPECT_NE(nan.find("not valid JSON"), std::string::npos) << nan;
+  const std::string nan_text =
+      read_error(valid_text("k_F", "{\"value\": \"nan\", \"unit\": \"1\"}"));
+  EXPECT_NE(nan_text.find("'parameters.k_F.value' must be a number"), std::string::npos)
+      << nan_text;
 }
 
 TEST(ParametersJson, BrokenFilesAreReported) {

@@ -158,5 +158,31 @@ TEST(AcstMaterial, HomogeneousTriaxialIsTheSameOnOneElementAndOnAMesh) {
   EXPECT_GT(*last.fabric_invariant, 0.0);  // fabric turns towards the compression direction
 }
 
+// A step the material cannot take however it is cut (extension to 40 % in one step takes p
+// below the model's floor at every quadrature point): the run stops after the bounded number of
+// cuts, naming the quadrature point, the strain increment, the start state and the model's reason;
+// nothing is NaN.
+TEST(AcstMaterial, AStepThatCannotBeCutStopsNamingThePointTheIncrementAndTheState) {
+  AcstInitialState initial;
+  initial.void_ratio = 0.75;
+  const AcstMaterial material(parameters(), initial);
+  TriaxialOptions options;
+  options.width = 0.5;
+  options.height = 1.0;
+  options.confining_pressure = 100e3;
+  options.axial_strain_end = -0.4;
+  options.n_steps = 1;
+  options.solver.max_cuts = 3;
+  const TriaxialResult result = run_triaxial(material, options);
+  EXPECT_FALSE(result.completed);
+  std::cout << "message: " << result.message << '\n';
+  for (const char* part : {"after 3 cuts", "ACST update failed", "quadrature point",
+                           "strain increment (tension positive", "start state", "void ratio",
+                           "mean stress falls below"})
+    EXPECT_NE(result.message.find(part), std::string::npos) << part << " in: " << result.message;
+  ASSERT_EQ(result.steps.size(), 1u);  // the initial state only
+  EXPECT_TRUE(std::isfinite(result.steps[0].p) && std::isfinite(result.steps[0].q));
+}
+
 }  // namespace
 }  // namespace fe_model
