@@ -13,6 +13,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -150,18 +151,21 @@ struct AssemblyScratch {
                        dealii::update_values | dealii::update_quadrature_points |
                            dealii::update_normal_vectors | dealii::update_JxW_values),
         strains(quadrature.size()),
-        shape_strain(fe.n_dofs_per_cell()) {}
+        shape_strain(fe.n_dofs_per_cell()),
+        mean_divergence(fe.n_dofs_per_cell()) {}
   AssemblyScratch(const AssemblyScratch& other)
       : fe_values(other.fe_values.get_fe(), other.fe_values.get_quadrature(),
                   other.fe_values.get_update_flags()),
         fe_face_values(other.fe_face_values.get_fe(), other.fe_face_values.get_quadrature(),
                        other.fe_face_values.get_update_flags()),
         strains(other.strains.size()),
-        shape_strain(other.shape_strain.size()) {}
+        shape_strain(other.shape_strain.size()),
+        mean_divergence(other.mean_divergence.size()) {}
   dealii::FEValues<3> fe_values;
   dealii::FEFaceValues<3> fe_face_values;
   std::vector<SymmetricTensor2> strains;
   std::vector<SymmetricTensor2> shape_strain;
+  std::vector<double> mean_divergence;  // (1/V_cell) int div N_i dV, for the mean dilatation
 };
 
 // What one cell contributes, handed to the (sequential, in-order) copier.
@@ -211,6 +215,27 @@ MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, boo
     fe_values[kDisplacement].get_function_symmetric_gradients(u, scratch.strains);
     const std::vector<std::shared_ptr<PointHistory>> history = history_.get_data(cell);
     const unsigned int n_q_points = fe_values.n_quadrature_points;
+    const bool bbar = options_.mean_dilatation;
+    if (bbar) {
+      // Mean dilatation (B-bar; Hughes 1980, de Souza Neto, Peric & Owen 2008 §15.4): every
+      // point of the cell takes the cell's mean volumetric strain, its deviatoric strain its own.
+      // B-bar is linear in u, so the tangent below stays the exact derivative of the residual.
+      double volume = 0.0;
+      std::fill(scratch.mean_divergence.begin(), scratch.mean_divergence.end(), 0.0);
+      for (unsigned int q = 0; q < n_q_points; ++q) {
+        volume += fe_values.JxW(q);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          scratch.mean_divergence[i] += fe_values[kDisplacement].divergence(i, q) * fe_values.JxW(q);
+      }
+      double mean_dilatation = 0.0;
+      for (unsigned int i = 0; i < dofs_per_cell; ++i) {
+        scratch.mean_divergence[i] /= volume;
+        mean_dilatation += scratch.mean_divergence[i] * u(copy.dof_indices[i]);
+      }
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        scratch.strains[q] += (mean_dilatation - dealii::trace(scratch.strains[q])) / 3.0 *
+                              dealii::unit_symmetric_tensor<3>();
+    }
 
     for (unsigned int q = 0; q < n_q_points; ++q) {
       PointHistory& point = *history[q];
@@ -236,8 +261,13 @@ MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, boo
       copy.status = worst(copy.status, point_status);
 
       const double JxW = fe_values.JxW(q);
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      for (unsigned int i = 0; i < dofs_per_cell; ++i) {
         scratch.shape_strain[i] = fe_values[kDisplacement].symmetric_gradient(i, q);
+        if (bbar)
+          scratch.shape_strain[i] +=
+              (scratch.mean_divergence[i] - fe_values[kDisplacement].divergence(i, q)) / 3.0 *
+              dealii::unit_symmetric_tensor<3>();
+      }
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         copy.cell_internal(i) += (scratch.shape_strain[i] * point.end.stress) * JxW;
       if (with_matrix) {
@@ -385,8 +415,12 @@ StepReport Solid::advance_to(double load_target) {
     report.load_reached = committed_load_;
     return report;
   }
+  // depth: how many times the current increment has been halved from the nominal one. It is
+  // bounded by max_cuts over the whole step (a success in between regrows the increment but does
+  // not reset the bound), so a step whose admissible increment shrinks towards zero stops instead
+  // of creeping on.
   double increment = nominal;
-  int cuts_in_a_row = 0;
+  int depth = 0;
   while (true) {
     double next = committed_load_ + increment;
     // Snap to the target when within round-off of it, or when overshooting.
@@ -398,14 +432,15 @@ StepReport Solid::advance_to(double load_target) {
     if (converged) {
       commit();
       committed_load_ = next;
-      cuts_in_a_row = 0;
       if (next == load_target) break;
-      if (options_.regrow_after_cut) increment = std::min(2.0 * increment, nominal);
-      if (std::abs(increment) > std::abs(nominal)) increment = nominal;
+      if (options_.regrow_after_cut && depth > 0) {
+        increment *= 2.0;
+        --depth;
+      }
       continue;
     }
     revert();
-    if (cuts_in_a_row == options_.max_cuts) {
+    if (depth == options_.max_cuts) {
       std::ostringstream out;
       out << "load step to load factor " << load_target << " failed at load factor "
           << committed_load_ << " after " << options_.max_cuts << " cuts (smallest increment "
@@ -414,7 +449,7 @@ StepReport Solid::advance_to(double load_target) {
       report.load_reached = committed_load_;
       return report;
     }
-    ++cuts_in_a_row;
+    ++depth;
     ++report.cuts;
     increment *= 0.5;
     if (options_.verbose) {

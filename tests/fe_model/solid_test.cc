@@ -108,14 +108,19 @@ TEST(Solid, PatchTestReproducesConstantStrainAndStress) {
   EXPECT_LT(displacement_error, 1e-14);
 }
 
+// With and without the mean dilatation (B-bar): both residuals are differentiated exactly.
 TEST(Solid, AssembledTangentMatchesFiniteDifferencesOfResidual) {
+  for (const bool mean_dilatation : {true, false}) {
+  SCOPED_TRACE(mean_dilatation ? "mean dilatation" : "full integration");
   dealii::Triangulation<3> triangulation;
   make_distorted_cube(triangulation);
   const testing::HypoelasticTestMaterial material(0.01, 80.0);
   SymmetricTensor2 initial_stress = -100e3 * dealii::unit_symmetric_tensor<3>();
   initial_stress[2][2] = -150e3;
   initial_stress[0][1] = 10e3;
-  Solid solid(triangulation, material, initial_stress);
+  SolverOptions options;
+  options.mean_dilatation = mean_dilatation;
+  Solid solid(triangulation, material, initial_stress, options);
   // Tractions only (no Dirichlet condition): every degree of freedom is free.
   solid.add_traction_condition({1, [](const Point<3>&, const Tensor<1, 3>& n, double load) {
                                   return -(100e3 + 10e3 * load) * n;
@@ -148,12 +153,51 @@ TEST(Solid, AssembledTangentMatchesFiniteDifferencesOfResidual) {
     }
   }
   const double relative = max_error / max_entry;
-  std::cout << "FE tangent vs central differences (" << n << " dofs, h = " << h
+  std::cout << (mean_dilatation ? "B-bar: " : "full: ") << "FE tangent vs central differences (" << n << " dofs, h = " << h
             << "): max error / max entry = " << relative
             << "; max |K - K^T| / max entry = " << max_asymmetry / max_entry << '\n';
   RecordProperty("fd_tangent_error", std::to_string(relative));
   EXPECT_LT(relative, 1e-6);
   EXPECT_GT(max_asymmetry / max_entry, 1e-6);  // the test material's tangent is unsymmetric
+  }
+}
+
+// The mean dilatation gives every quadrature point of a cell the cell's volumetric strain (its
+// JxW-weighted mean) and keeps each point's deviatoric strain; full integration does not.
+TEST(Solid, MeanDilatationSharesTheCellsVolumetricStrain) {
+  std::vector<std::vector<double>> traces(2), deviators(2);
+  for (const bool mean_dilatation : {true, false}) {
+    dealii::Triangulation<3> triangulation;
+    make_distorted_cube(triangulation);
+    const LinearElasticMaterial material(1e8, 0.3);
+    SolverOptions options;
+    options.mean_dilatation = mean_dilatation;
+    Solid solid(triangulation, material, SymmetricTensor2(), options);
+    solid.setup();
+    const unsigned int n = solid.dof_handler().n_dofs();
+    dealii::Vector<double> u(n);
+    for (unsigned int i = 0; i < n; ++i) u[i] = 1e-4 * std::sin(1.7 * i + 0.3);
+    ASSERT_EQ(solid.assemble(u, 0.0, false), MaterialStatus::kOk);
+    solid.for_each_point([&](const Point<3>&, const PointState& state) {
+      traces[mean_dilatation].push_back(dealii::trace(state.strain));
+      deviators[mean_dilatation].push_back(dealii::deviator(state.strain).norm());
+    });
+  }
+  ASSERT_EQ(traces[1].size(), 64u);  // 8 cells (visited in order), 2x2x2 Gauss points each
+  double spread_bbar = 0.0, spread_full = 0.0, deviator_difference = 0.0;
+  for (std::size_t q = 0; q < 64; ++q) {
+    const std::size_t first = q - q % 8;  // the cell's first point
+    spread_bbar = std::max(spread_bbar, std::abs(traces[1][q] - traces[1][first]));
+    spread_full = std::max(spread_full, std::abs(traces[0][q] - traces[0][first]));
+    deviator_difference = std::max(deviator_difference, std::abs(deviators[1][q] - deviators[0][q]));
+  }
+  double scale = 0.0;
+  for (const double t : traces[0]) scale = std::max(scale, std::abs(t));
+  std::cout << "volumetric strain spread over the cell: B-bar " << spread_bbar / scale
+            << ", full integration " << spread_full / scale << '\n';
+  EXPECT_LT(spread_bbar, 1e-13 * scale);
+  EXPECT_GT(spread_full, 1e-3 * scale);  // the distorted cell strains non-uniformly
+  EXPECT_LT(deviator_difference, 1e-12);
 }
 
 TEST(Solid, RevertRestoresTheCommittedState) {

@@ -92,7 +92,7 @@ class Solid {
   void setup();
 
   /// Reaches `load_target` from the committed load, cutting the increment in halves on failure
-  /// (SolverOptions::max_cuts in a row at most). Commits every converged increment. On failure the
+  /// (never below 2^-SolverOptions::max_cuts of the step). Commits every converged increment. On failure the
   /// last converged state stays committed and the report says why; it never throws for a
   /// material or Newton failure.
   StepReport advance_to(double load_target);

@@ -17,13 +17,18 @@ struct SolverOptions {
   double residual_rtol = 1e-10;
   double residual_atol = 1e-12;
   int max_newton_iterations = 20;
-  /// Step cutting: the load increment is halved on a failed material update or a Newton failure,
-  /// at most max_cuts times in a row (so the smallest increment is 2^-max_cuts of the nominal one).
+  /// Step cutting: the load increment is halved on a failed material update or a Newton failure;
+  /// the increment is never smaller than 2^-max_cuts of the nominal one, and a step that fails at
+  /// that size stops the run.
   int max_cuts = 12;
   /// After a successful cut step the increment is doubled again, up to the nominal one.
   bool regrow_after_cut = true;
   /// Treat kUnreliable material updates like failures (cut the step) instead of accepting them.
   bool cut_on_unreliable = false;
+  /// Mean dilatation (B-bar) in the Q1 cells: the volumetric strain is the cell's mean. Q1 with
+  /// full integration locks when the plastic flow is (nearly) isochoric or dilatant at a rate
+  /// tied to the shear (critical state, rough platens); homogeneous fields are unchanged.
+  bool mean_dilatation = true;
   /// Print the Newton log (residual norms and ratios) to std::cout.
   bool verbose = false;
 };
