@@ -72,8 +72,12 @@ int main(int argc, char** argv) {
                 parameters_path.c_str(), cells, 8 * cells * cells * cells, strain, steps,
                 dealii::MultithreadInfo::n_threads());
     std::fflush(stdout);
-    std::printf("| platens | completed | steps | Newton | cuts | wall [s] | q/p end | eps_v end | "
-                "bulge at mid-height [mm] |\n|---|---|---|---|---|---|---|---|---|\n");
+    // q/p two ways: from the platen force as a laboratory measures it (q = F/A - sigma_3, the
+    // volume average of sigma_zz being F/A exactly), and from the volume averages of all
+    // components (which, with rough platens, include the platens' shear tractions).
+    std::printf("| platens | completed | steps | Newton | cuts | wall [s] | q/p platen | "
+                "q/p volume average | eps_v end | radial displacement at mid-height [mm] |\n"
+                "|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Case& c : {Case{"smooth", false}, Case{"rough", true}}) {
       if (!only.empty() && only != c.name) continue;
       fe_model::TriaxialOptions options;
@@ -98,9 +102,12 @@ int main(int argc, char** argv) {
       }
       const fe_model::TriaxialStep& end = r.steps.back();
       const double bulge = r.bulge.empty() ? 0.0 : r.bulge.front().radial_displacement;
-      std::printf("| %-7s | %-9s | %zu/%u | %6d | %4d | %8.2f | %7.4f | %9.5f | %8.4f |\n",
+      const double q_platen = end.axial_stress - options.confining_pressure;
+      const double p_platen = options.confining_pressure + q_platen / 3.0;
+      std::printf("| %-7s | %-9s | %zu/%u | %6d | %4d | %8.2f | %7.4f | %7.4f | %9.5f | %8.4f |\n",
                   c.name.c_str(), r.completed ? "yes" : "NO", r.steps.size() - 1, steps, newton,
-                  cuts, wall, end.q / end.p, end.volumetric_strain, 1e3 * bulge);
+                  cuts, wall, q_platen / p_platen, end.q / end.p, end.volumetric_strain,
+                  1e3 * bulge);
       if (!r.completed) std::printf("  %s\n", r.message.c_str());
       std::fflush(stdout);
       std::ofstream profile(output + "/" + c.name + "_bulge.csv");

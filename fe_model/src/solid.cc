@@ -146,22 +146,18 @@ namespace {
 struct AssemblyScratch {
   AssemblyScratch(const dealii::FiniteElement<3>& fe, const dealii::Quadrature<3>& quadrature,
                   const dealii::Quadrature<2>& face_quadrature)
-      : fe_values(fe, quadrature, dealii::update_gradients | dealii::update_JxW_values),
-        fe_face_values(fe, face_quadrature,
+      : fe_face_values(fe, face_quadrature,
                        dealii::update_values | dealii::update_quadrature_points |
                            dealii::update_normal_vectors | dealii::update_JxW_values),
         strains(quadrature.size()),
         shape_strain(fe.n_dofs_per_cell()),
         mean_divergence(fe.n_dofs_per_cell()) {}
   AssemblyScratch(const AssemblyScratch& other)
-      : fe_values(other.fe_values.get_fe(), other.fe_values.get_quadrature(),
-                  other.fe_values.get_update_flags()),
-        fe_face_values(other.fe_face_values.get_fe(), other.fe_face_values.get_quadrature(),
+      : fe_face_values(other.fe_face_values.get_fe(), other.fe_face_values.get_quadrature(),
                        other.fe_face_values.get_update_flags()),
         strains(other.strains.size()),
         shape_strain(other.shape_strain.size()),
         mean_divergence(other.mean_divergence.size()) {}
-  dealii::FEValues<3> fe_values;
   dealii::FEFaceValues<3> fe_face_values;
   std::vector<SymmetricTensor2> strains;
   std::vector<SymmetricTensor2> shape_strain;
@@ -203,7 +199,11 @@ MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, boo
 
   auto worker = [&](const typename dealii::DoFHandler<3>::active_cell_iterator& cell,
                     AssemblyScratch& scratch, AssemblyCopy& copy) {
-    dealii::FEValues<3>& fe_values = scratch.fe_values;
+    // A fresh FEValues per cell: a reused one skips recomputing the Jacobians when the cell is a
+    // translation of the one it saw last (deal.II's CellSimilarity), which changes them in the
+    // last bit, and which cell a thread's scratch saw last depends on the scheduling.
+    dealii::FEValues<3> fe_values(fe_, cell_quadrature_,
+                                  dealii::update_gradients | dealii::update_JxW_values);
     fe_values.reinit(cell);
     cell->get_dof_indices(copy.dof_indices);
     copy.cell_matrix = 0.0;

@@ -2,6 +2,7 @@
 // against finite differences of the assembled residual.
 #include "fe_model/solid.h"
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/point.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/mapping_q1.h>
@@ -198,6 +199,52 @@ TEST(Solid, MeanDilatationSharesTheCellsVolumetricStrain) {
   EXPECT_LT(spread_bbar, 1e-13 * scale);
   EXPECT_GT(spread_full, 1e-3 * scale);  // the distorted cell strains non-uniformly
   EXPECT_LT(deviator_difference, 1e-12);
+}
+
+// WorkStream assembly: the copier adds the cells in their order, so the residual and the matrix
+// are the same for 1 and 2 threads, bit for bit; and so is a whole Newton solve.
+TEST(Solid, AssemblyAndSolveAreTheSameForAnyNumberOfThreads) {
+  std::vector<dealii::Vector<double>> residuals, solutions;
+  std::vector<std::vector<double>> matrices;
+  for (const unsigned int threads : {1u, 2u}) {
+    dealii::MultithreadInfo::set_thread_limit(threads);
+    dealii::Triangulation<3> triangulation;
+    dealii::GridGenerator::subdivided_hyper_rectangle(triangulation, {4, 4, 4}, Point<3>(0, 0, 0),
+                                                      Point<3>(1, 1, 1), true);
+    const testing::HypoelasticTestMaterial material(0.01, 80.0);
+    Solid solid(triangulation, material, -100e3 * dealii::unit_symmetric_tensor<3>());
+    auto zero = [](const Point<3>&, double) { return Tensor<1, 3>(); };
+    solid.add_displacement_condition({0, {{true, false, false}}, zero});
+    solid.add_displacement_condition({2, {{false, true, false}}, zero});
+    solid.add_displacement_condition({4, {{false, false, true}}, zero});
+    solid.add_displacement_condition({5, {{true, true, true}}, [](const Point<3>&, double load) {
+                                        Tensor<1, 3> u;
+                                        u[2] = -0.01 * load;
+                                        return u;
+                                      }});
+    solid.add_traction_condition({1, [](const Point<3>&, const Tensor<1, 3>& n, double) {
+                                    return -100e3 * n;
+                                  }});
+    solid.setup();
+    dealii::Vector<double> u(solid.dof_handler().n_dofs());
+    for (unsigned int i = 0; i < u.size(); ++i) u[i] = 1e-4 * std::sin(1.7 * i + 0.3);
+    ASSERT_EQ(solid.assemble(u, 0.5, true), MaterialStatus::kOk);
+    residuals.push_back(solid.residual());
+    std::vector<double> entries;
+    for (auto it = solid.tangent_matrix().begin(); it != solid.tangent_matrix().end(); ++it)
+      entries.push_back(it->value());
+    matrices.push_back(entries);
+    const StepReport report = solid.advance_to(1.0);
+    ASSERT_TRUE(report.converged) << report.message;
+    solutions.push_back(solid.solution());
+  }
+  dealii::MultithreadInfo::set_thread_limit();
+  EXPECT_TRUE(residuals[0] == residuals[1]);
+  EXPECT_TRUE(matrices[0] == matrices[1]);
+  dealii::Vector<double> difference = solutions[0];
+  difference -= solutions[1];
+  std::cout << "1 vs 2 threads: |u_1 - u_2|_inf = " << difference.linfty_norm() << '\n';
+  EXPECT_TRUE(solutions[0] == solutions[1]);
 }
 
 TEST(Solid, RevertRestoresTheCommittedState) {
