@@ -3,6 +3,7 @@
 // step cut through PNEWDT.
 #include "calibration/umat.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
