@@ -10,6 +10,7 @@
 
 #include "calibration/fit.h"
 #include "dem/run_file.h"
+#include "sff/run_snapshot.h"
 
 namespace calibration {
 
@@ -20,29 +21,6 @@ std::string stem(const std::string& path) {
   std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
   const std::size_t dot = name.find('.');
   return dot == std::string::npos ? name : name.substr(0, dot);
-}
-
-/// [contact] friction from a TOML config text (0 if absent).
-double config_friction(const std::string& config) {
-  std::istringstream lines(config);
-  std::string line, section;
-  while (std::getline(lines, line)) {
-    const std::size_t hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    const std::size_t first = line.find_first_not_of(" \t");
-    if (first == std::string::npos) continue;
-    line = line.substr(first);
-    if (line[0] == '[') {
-      section = line.substr(1, line.find(']') - 1);
-      continue;
-    }
-    const std::size_t eq = line.find('=');
-    if (section != "contact" || eq == std::string::npos) continue;
-    std::string key = line.substr(0, eq);
-    key.erase(key.find_last_not_of(" \t") + 1);
-    if (key == "friction") return std::stod(line.substr(eq + 1));
-  }
-  return 0.0;
 }
 
 std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
@@ -118,7 +96,14 @@ TestData read_run_file(const std::string& path) {
   const dem::RunMetadata meta = file.metadata();
   t.seed = meta.seed;
   t.program_version = meta.program_version;
-  t.friction = config_friction(meta.config_text);
+  // The friction of shearing, read from the stored config as the DEM and the SFF analysis read
+  // it (its default when [contact] has no friction key; a stored text that is not TOML is
+  // refused naming the file).
+  try {
+    t.friction = sff::stored_config(file).contact.friction;
+  } catch (const std::invalid_argument& e) {  // the reader's errors are runtime_errors
+    throw std::runtime_error(e.what());
+  }
   std::map<std::string, std::vector<double>> series;
   for (const char* name : {"axial_strain", "eta", "volumetric_strain", "void_ratio", "p"}) {
     const auto& names = file.series_names();

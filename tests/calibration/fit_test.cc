@@ -284,6 +284,30 @@ TEST(FitInputs, RunFileWithoutSffTableIsNamed) {
   std::filesystem::remove(path);
 }
 
+// The stored config is read by the DEM's own parser: without a [contact] friction key the run
+// sheared at the DEM default (tan 30 deg), not at 0 (which would skip the SFF strength fit); a
+// stored text that is not TOML is refused, naming the file, as `sffcal sff` refuses it.
+TEST(FitInputs, FrictionComesFromTheDemParserOfTheStoredConfig) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "calibration_fit_test_friction.h5").string();
+  auto write = [&](const std::string& config_text) {
+    std::filesystem::remove(path);
+    dem::RunMetadata meta;
+    meta.kind = "triaxial";
+    meta.config_text = config_text;
+    dem::RunFile file = dem::RunFile::create(
+        path, meta, {"axial_strain", "eta", "volumetric_strain", "void_ratio", "p"});
+    for (int k = 0; k < 5; ++k) file.append_series({0.01 * k, 0.1 * k, 0.0, 0.7, 1e5});
+    file.write_table("sff", {"axial_strain", "a_c", "a_n", "m", "eta"},
+                     {{0.0, 0.0, 0.0, 0.0, 0.0}, {0.02, 0.5, 0.4, 0.3, 0.5}});
+  };
+  write("bodies = 100\n");
+  EXPECT_NEAR(read_run_file(path).friction, std::tan(M_PI / 6.0), 1e-15);
+  write("[contact]\nfriction = = 0.5\n");
+  expect_error([&] { read_run_file(path); }, path);
+  std::filesystem::remove(path);
+}
+
 TEST(FitInputs, MissingCsvColumnIsNamed) {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string series = (dir / "calibration_fit_test_series.csv").string();
