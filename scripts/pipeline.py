@@ -104,7 +104,7 @@ class Pipeline:
             self.write_configs()
             return [Task(stage, n, [self.path("configs", n + ".toml")], [self.path("specimens", n + ".h5")],
                          [[self.sffcal, "prepare", "-c", self.path("configs", n + ".toml"),
-                           "-o", self.path("specimens", n + ".h5")]]) for n in names]
+                           "-o", self.path("specimens", n + ".h5"), "--force"]]) for n in names]
         if stage == "triaxial":
             if self.scene.get("matrix"):
                 script = os.path.join(ROOT, "bench", "matrix", "run_matrix.sh")
@@ -120,7 +120,7 @@ class Pipeline:
                 vtk = self.path("vtk", n)
                 tasks.append(Task(stage, n, [config, specimen],
                                   [run, self.path("runs", n + ".png"), os.path.join(vtk, "spheres.pvd")],
-                                  [[self.sffcal, "triaxial", "-c", config, "-s", specimen, "-o", run],
+                                  [[self.sffcal, "triaxial", "-c", config, "-s", specimen, "-o", run, "--force"],
                                    [PY, os.path.join(ROOT, "bench", "reference", "plot_triaxial.py"),
                                     run, self.path("runs", n + ".png")],
                                    [self.sffcal, "vtk", run, "-o", vtk]],  # snapshots for ParaView

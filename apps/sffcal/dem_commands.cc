@@ -14,6 +14,7 @@
 #include "dem/triaxial.h"
 #include "dem/vtk_writer.h"
 #include "csv_table.h"
+#include "output_guard.h"
 #include "progress.h"
 
 namespace sffcal {
@@ -102,6 +103,7 @@ int print_default_config(const std::string& out_path) {
   std::ofstream out(out_path);
   if (!out) throw std::runtime_error("cannot write " + out_path);
   out << dem::default_run_config_text();
+  check_written(out, out_path);
   std::printf("wrote %s\n", out_path.c_str());
   return 0;
 }

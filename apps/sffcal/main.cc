@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "dem_commands.h"
+#include "output_guard.h"
 #include "sff_command.h"
 #ifdef SFFCAL_HAVE_FE_CHECK
 #include "fe_check_command.h"
@@ -19,18 +20,23 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   std::string config_path, out_path, specimen_path, run_path;
+  bool force = false;  // overwrite an existing output file
+  const char* force_help = "overwrite the output file if it exists";
   CLI::App* config = app.add_subcommand("config", "Print (or write) the default configuration");
   config->add_option("-o,--output", out_path, "file to write instead of printing");
+  config->add_flag("--force", force, force_help);
 
   CLI::App* prepare = app.add_subcommand("prepare", "Prepare a specimen (insertion, optional "
                                                     "gravity deposition, isotropic compaction)");
   prepare->add_option("-c,--config", config_path, "TOML configuration")->required()->check(CLI::ExistingFile);
   prepare->add_option("-o,--output", out_path, "specimen file to write (HDF5)")->required();
+  prepare->add_flag("--force", force, force_help);
 
   CLI::App* triaxial = app.add_subcommand("triaxial", "Drained triaxial compression of a specimen");
   triaxial->add_option("-c,--config", config_path, "TOML configuration")->check(CLI::ExistingFile);
   triaxial->add_option("-s,--specimen", specimen_path, "specimen file from 'prepare'")->check(CLI::ExistingFile);
   triaxial->add_option("-o,--output", out_path, "run file to write (HDF5)")->required();
+  triaxial->add_flag("--force", force, force_help);
   bool resume = false;
   triaxial->add_flag("--resume", resume, "continue the run file from its last checkpoint "
                                          "(uses the config stored in it)");
@@ -39,6 +45,7 @@ int main(int argc, char** argv) {
   dem->add_option("-c,--config", config_path, "TOML configuration")->required()->check(CLI::ExistingFile);
   dem->add_option("-o,--output", out_path, "run file to write (HDF5); the specimen goes to "
                                            "<output>.specimen.h5")->required();
+  dem->add_flag("--force", force, "overwrite the run and specimen files if they exist");
 
   CLI::App* vtk = app.add_subcommand("vtk", "Export the snapshots of a run file for ParaView");
   vtk->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
@@ -144,28 +151,49 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (config->parsed()) return sffcal::print_default_config(out_path);
-    if (prepare->parsed()) return sffcal::prepare_command(config_path, out_path);
+    // Outputs are checked before any work starts (an existing file needs --force; an output is
+    // never an input; its folder must be writable).
+    if (config->parsed()) {
+      if (!out_path.empty()) sffcal::check_new_output_file(out_path, {}, force);
+      return sffcal::print_default_config(out_path);
+    }
+    if (prepare->parsed()) {
+      sffcal::check_new_output_file(out_path, {config_path}, force);
+      return sffcal::prepare_command(config_path, out_path);
+    }
     if (triaxial->parsed()) {
       if (resume) return sffcal::resume_command(out_path);
       if (config_path.empty() || specimen_path.empty())
         throw std::invalid_argument("triaxial needs --config and --specimen (or --resume)");
+      sffcal::check_new_output_file(out_path, {config_path, specimen_path}, force);
       return sffcal::triaxial_command(config_path, specimen_path, out_path);
     }
-    if (dem->parsed()) return sffcal::dem_command(config_path, out_path);
-    if (vtk->parsed()) return sffcal::vtk_command(run_path, out_path);
+    if (dem->parsed()) {
+      sffcal::check_new_output_file(out_path, {config_path}, force);
+      sffcal::check_new_output_file(out_path + ".specimen.h5", {config_path}, force);
+      return sffcal::dem_command(config_path, out_path);
+    }
+    if (vtk->parsed()) {
+      sffcal::check_output_folder(out_path);
+      return sffcal::vtk_command(run_path, out_path);
+    }
     if (info->parsed()) return sffcal::info_command(run_path);
-    if (sff->parsed()) return sffcal::sff_command(run_paths, sff_options);
+    if (sff->parsed()) {
+      if (!sff_options.csv_folder.empty()) sffcal::check_output_folder(sff_options.csv_folder);
+      return sffcal::sff_command(run_paths, sff_options);
+    }
 #ifdef SFFCAL_HAVE_CALIBRATE
     if (calibrate->parsed()) {
       std::string command_line;
       for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
+      sffcal::check_output_folder(calibrate_options.output_folder);
       return sffcal::calibrate_command(calibrate_runs, calibrate_options, command_line);
     }
 #endif
 #ifdef SFFCAL_HAVE_FE_CHECK
     if (fe_check->parsed()) {
       fe_check_options.mesh = !fe_check_no_mesh;
+      sffcal::check_output_folder(fe_check_options.output_folder);
       return sffcal::fe_check_command(fe_check_options);
     }
 #endif

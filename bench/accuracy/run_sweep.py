@@ -122,7 +122,7 @@ def specimen(out, sffcal, seed, bodies):
     if claim(path + ".claim"):
         config = path.replace(".h5", ".toml")
         write_config(config, seed, dict(BASE, bodies=bodies))
-        if run([sffcal, "prepare", "-c", config, "-o", path + ".part"], path + ".log") != 0:
+        if run([sffcal, "prepare", "-c", config, "-o", path + ".part", "--force"], path + ".log") != 0:
             sys.exit(f"preparing {path} failed: see {path}.log")
         os.replace(path + ".part", path)
     while not os.path.exists(path):

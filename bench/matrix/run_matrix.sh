@@ -18,6 +18,6 @@ mkdir -p "$out/configs"
 /usr/bin/python3 bench/matrix/make_configs.py "$out/configs" --bodies "$bodies" --only "$only" >/dev/null
 start=$(date +%s)
 ls "$out"/configs/*"$only"*.toml | xargs -P "$jobs" -I{} bash -c \
-  'n=$(basename {} .toml); /usr/bin/time -f "%e s" build/sffcal dem -c {} -o '"$out"'/$n.h5 > '"$out"'/$n.log 2>&1 \
+  'n=$(basename {} .toml); /usr/bin/time -f "%e s" build/sffcal dem --force -c {} -o '"$out"'/$n.h5 > '"$out"'/$n.log 2>&1 \
    && build/sffcal sff '"$out"'/$n.h5 --resamples 50 >> '"$out"'/$n.log 2>&1 && echo "$n done" || echo "$n FAILED (see '"$out"'/$n.log)"'
 echo "matrix: $(( $(date +%s) - start )) s with $jobs jobs"

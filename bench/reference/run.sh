@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 ./scripts/build.sh >/dev/null
 mkdir -p out/reference
-/usr/bin/time -v ./build/sffcal dem -c bench/reference/dense_100kPa.toml \
+/usr/bin/time -v ./build/sffcal dem --force -c bench/reference/dense_100kPa.toml \
   -o out/reference/dense_100kPa.h5 2>&1 | tee out/reference/dense_100kPa.log
 /usr/bin/python3 bench/reference/plot_triaxial.py out/reference/dense_100kPa.h5 \
   bench/reference/dense_100kPa.png

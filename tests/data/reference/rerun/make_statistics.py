@@ -55,7 +55,7 @@ def run(task):
     open(config, "w").write(text)
     out = os.path.join(work, f"{case}_seed{seed}.h5")
     with open(out + ".log", "w") as log:
-        subprocess.run([sffcal, "dem", "-c", config, "-o", out], stdout=log, stderr=subprocess.STDOUT, check=True)
+        subprocess.run([sffcal, "dem", "-c", config, "-o", out, "--force"], stdout=log, stderr=subprocess.STDOUT, check=True)
     return case, seed, measures(out + ".series.csv")
 
 

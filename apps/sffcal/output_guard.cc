@@ -1,0 +1,75 @@
+#include "output_guard.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+namespace sffcal {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool writable_folder(const fs::path& folder) {
+  std::error_code error;
+  return fs::is_directory(folder, error) && ::access(folder.c_str(), W_OK | X_OK) == 0;
+}
+
+// The folder a new entry at `path` would be created in ("." for a bare name).
+fs::path parent_of(const fs::path& path) {
+  const fs::path parent = path.parent_path();
+  return parent.empty() ? fs::path(".") : parent;
+}
+
+}  // namespace
+
+void check_new_output_file(const std::string& path, const std::vector<std::string>& inputs,
+                           bool force) {
+  std::error_code error;
+  for (const std::string& input : inputs) {
+    if (!input.empty() && fs::equivalent(path, input, error))
+      throw std::runtime_error("output '" + path + "' is also an input of this command ('" +
+                               input + "'): choose another output");
+  }
+  if (fs::exists(path, error)) {
+    if (fs::is_directory(path, error))
+      throw std::runtime_error("output '" + path + "' is a folder, not a file");
+    if (!force)
+      throw std::runtime_error("output '" + path +
+                               "' exists: pass --force to overwrite it, or choose another output");
+    if (::access(path.c_str(), W_OK) != 0)
+      throw std::runtime_error("output '" + path + "' exists and is not writable");
+    return;
+  }
+  const fs::path folder = parent_of(path);
+  if (!fs::exists(folder, error))
+    throw std::runtime_error("the folder of output '" + path + "' ('" + folder.string() +
+                             "') does not exist");
+  if (!writable_folder(folder))
+    throw std::runtime_error("the folder of output '" + path + "' ('" + folder.string() +
+                             "') is not a writable folder");
+}
+
+void check_output_folder(const std::string& folder) {
+  std::error_code error;
+  fs::path existing = folder;
+  if (fs::exists(existing, error)) {
+    if (!writable_folder(existing))
+      throw std::runtime_error("output folder '" + folder + "' is not a writable folder");
+    return;
+  }
+  // It will be created: its nearest existing ancestor must be a writable folder.
+  while (!existing.empty() && !fs::exists(existing, error)) existing = existing.parent_path();
+  if (existing.empty()) existing = ".";
+  if (!writable_folder(existing))
+    throw std::runtime_error("output folder '" + folder + "' cannot be created: '" +
+                             existing.string() + "' is not a writable folder");
+}
+
+void check_written(std::ostream& out, const std::string& path) {
+  out.flush();
+  if (!out) throw std::runtime_error("writing '" + path + "' failed (disk full or write error)");
+}
+
+}  // namespace sffcal

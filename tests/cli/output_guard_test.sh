@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# The output checks of the sffcal front end (apps/sffcal/output_guard.h), as a user meets them:
+# an existing output is refused without --force and left untouched, an output that is an input is
+# refused, a missing or non-folder destination is refused before any work, a failed write is an
+# error. Usage: output_guard_test.sh SFFCAL_BINARY. Exit status 0 when every check passes.
+set -u
+sffcal=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+
+# expect_failure DESCRIPTION NEEDLE COMMAND...: the command exits non-zero and says NEEDLE.
+expect_failure() {
+  local what=$1 needle=$2
+  shift 2
+  local output
+  if output=$("$@" 2>&1); then
+    echo "FAIL $what: exit status 0"; failures=$((failures + 1))
+  elif [[ $output != *"$needle"* ]]; then
+    echo "FAIL $what: message without '$needle': $output"; failures=$((failures + 1))
+  else
+    echo "ok   $what"
+  fi
+}
+expect_unchanged() {
+  if cmp -s "$1" "$2"; then echo "ok   $3"; else echo "FAIL $3"; failures=$((failures + 1)); fi
+}
+
+"$sffcal" config -o my.toml > /dev/null || { echo "FAIL config -o my.toml"; exit 1; }
+cp my.toml original.toml
+echo "# edited by hand" >> my.toml
+cp my.toml edited.toml
+
+expect_failure "config -o onto an existing file is refused" "pass --force" \
+  "$sffcal" config -o my.toml
+expect_unchanged my.toml edited.toml "the existing file is left as it was"
+"$sffcal" config -o my.toml --force > /dev/null && expect_unchanged my.toml original.toml \
+  "config -o --force overwrites it"
+expect_failure "a failed write (/dev/full) is an error" "failed" \
+  "$sffcal" config -o /dev/full --force
+
+expect_failure "prepare with the output equal to the config is refused" "is also an input" \
+  "$sffcal" prepare -c my.toml -o my.toml
+expect_failure "... also when spelled differently, with --force" "is also an input" \
+  "$sffcal" prepare -c my.toml -o ./my.toml --force
+expect_unchanged my.toml original.toml "the config is left as it was"
+cp my.toml specimen.h5
+expect_failure "triaxial with the output equal to the specimen is refused" "is also an input" \
+  "$sffcal" triaxial -c my.toml -s specimen.h5 -o "$work/specimen.h5" --force
+expect_unchanged specimen.h5 original.toml "the specimen is left as it was"
+expect_failure "prepare into a missing folder is refused before any work" "does not exist" \
+  "$sffcal" prepare -c my.toml -o missing/specimen.h5
+cp my.toml run.h5.specimen.h5
+expect_failure "dem refuses an existing specimen file beside the run" "run.h5.specimen.h5' exists" \
+  "$sffcal" dem -c my.toml -o run.h5
+expect_failure "an output folder under a file cannot be created" "not a writable folder" \
+  "$sffcal" vtk specimen.h5 -o my.toml/vtk
+test ! -e run.h5 && echo "ok   nothing was written by the refused commands" ||
+  { echo "FAIL run.h5 was written"; failures=$((failures + 1)); }
+
+echo "$failures check(s) failed"
+exit $((failures > 0))
