@@ -44,6 +44,42 @@ TEST(DrainedTriaxial, LateralStressIsHeldAndShearStaysZero) {
   EXPECT_GT(r.rows.back().q, 0.5 * kP0);
 }
 
+// Large unreliable first-loading increments (5e-3 at the FE default, one step per increment) of
+// a dense specimen with the main job's calibrated parameters: the lateral Newton used to cycle
+// between two iterates (a slow step redone with the same fresh matrix) and give up, where the
+// FE's full Newton converged; it must converge, and every increment at full size.
+TEST(MixedIncrement, LargeUnreliableIncrementsConvergeWithoutCycling) {
+  const Parameters<double> par{40.43005075410128,   0.31126758874127464, 1.0974972755690091,
+                               0.712,               0.8202308213568271,  0.014576092728024155,
+                               0.7,                 0.01,                10.21331913577934,
+                               0.99,                3.106397959702359,   1.4236928392175574,
+                               1.96860911530643,    0.20981249439349592, 56.33581004970864};
+  DriverOptions options;
+  options.integration = IntegrationOptions();  // the FE default
+  options.stress_tolerance = 1e-9;
+  options.max_newton_iterations = 50;
+  // The DEM specimen's sigma_3, e_0 and fabric (F = A/a_cs, A = a_c diag(-1/3, -1/3, 2/3)).
+  const double sigma_3 = 199999.24758758768, a_c = -0.07997949715941317, a_cs = 0.7533278261300674;
+  const Tensor<double> fabric =
+      (a_c / a_cs) * Eigen::Vector3d(-1.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0).asDiagonal().toDenseMatrix();
+  // Increment by increment with a fresh Newton matrix each (as sffcal fe-check's driver runs),
+  // the previous increment's lateral strains as the guess; 50 increments of 5e-3.
+  State<double> state = isotropic_state(sigma_3, 0.6533459051117043, fabric);
+  const std::array<Control, 6> control = {{Control::kStress, Control::kStress, Control::kStrain,
+                                           Control::kStrain, Control::kStrain, Control::kStrain}};
+  const std::array<double, 6> value = {{sigma_3, sigma_3, 5e-3, 0.0, 0.0, 0.0}};
+  Tensor<double> guess = Tensor<double>::Zero();
+  for (int k = 0; k < 50; ++k) {
+    Tensor<double> deps = guess;
+    State<double> next;
+    const UpdateStatus status = mixed_increment(par, state, control, value, deps, next, options);
+    ASSERT_NE(status, UpdateStatus::kFailed) << "increment " << k + 1;
+    EXPECT_NEAR(next.stress(0, 0), sigma_3, 1e-9 * next.stress.trace() / 3.0);
+    state = next;
+    guess = deps;
+  }
+}
+
 TEST(DrainedTriaxial, LongPathReachesTheCriticalState) {
   // Medium-loose specimen with an initially weak fabric, sheared to eps_a = 2 (a convergence
   // check of the equations, not a claim about real sand at that strain).

@@ -142,6 +142,7 @@ UpdateStatus mixed_increment(const Parameters<T>& par, const State<T>& start,
   Eigen::VectorXd previous_r;  // residual at previous_deps, for the Broyden update
   bool has_previous_r = false;
   bool polishing = false;  // converged; one more step is being tried
+  bool last_step_fresh = false;  // the last correction was computed with a fresh Newton matrix
   double converged_largest = 0.0;
   Tensor<double> converged_deps = Tensor<double>::Zero();
   State<double> converged_end = start_value;
@@ -201,7 +202,10 @@ UpdateStatus mixed_increment(const Parameters<T>& par, const State<T>& start,
       converged_status = status;
     }
     if (!polishing && !fresh && largest > 0.25 * previous_largest) {
-      deps = previous_deps;  // slow: redo this step with a fresh matrix
+      // Slow: redo the step with a fresh matrix; if it already came from a fresh one, redoing it
+      // would give the same iterate again (a cycle), so go on from here with a fresh matrix
+      // (full Newton).
+      if (!last_step_fresh) deps = previous_deps;
       refresh = true;
       has_previous_r = false;
       continue;
@@ -239,6 +243,7 @@ UpdateStatus mixed_increment(const Parameters<T>& par, const State<T>& start,
       continue;
     }
     const Eigen::VectorXd correction = lu.solve(r);
+    last_step_fresh = fresh;
     previous_deps = deps;
     for (int b = 0; b < n_unknown; ++b) {
       const int k = kVoigtI[unknown[b]], l = kVoigtJ[unknown[b]];
