@@ -24,9 +24,11 @@ using calibration::IntegrationOptions;
 using calibration::State;
 using calibration::Tensor;
 
-calibration::Parameters<double> toyoura() {
-  return {125.0, 0.05, 1.25, 0.712, 0.934, 0.019, 0.7, 0.01,
-          7.05,  0.968, 1.1, 0.704, 3.5,  0.1,   5.0};
+// The Toyoura-like parameters of docs/model.md, from the example parameter file.
+const calibration::Parameters<double>& toyoura() {
+  static const calibration::Parameters<double> p =
+      calibration::read_parameters_json(SFFCAL_SOURCE_DIR "/examples/acst_toyoura.json");
+  return p;
 }
 
 State<double> isotropic() {
@@ -72,7 +74,7 @@ void run(benchmark::State& bench, bool with_tangent) {
   const State<double> start = bench.range(1) == 0 ? plastic() : isotropic();
   const Tensor<double> deps = increment(1e-4 * static_cast<double>(bench.range(2)));
   const IntegrationOptions options = integration(which);
-  const calibration::Parameters<double> par = toyoura();
+  const calibration::Parameters<double>& par = toyoura();
   State<double> end;
   Eigen::Matrix<double, 9, 9> tangent;
   long substeps = 0;

@@ -115,16 +115,23 @@ TEST(AcstMaterial, TangentMatchesFiniteDifferencesInPlasticLoading) {
   EXPECT_LT(error, 1e-4);
 }
 
+// The specimen of the homogeneous checks: a 0.5 m x 0.5 m x 1 m eighth at sigma_3 = 100 kPa (the
+// answer of a homogeneous test does not depend on the size).
+TriaxialOptions specimen_options() {
+  TriaxialOptions options;
+  options.width = 0.5;
+  options.height = 1.0;
+  options.confining_pressure = 100e3;
+  return options;
+}
+
 TEST(AcstMaterial, HomogeneousTriaxialIsTheSameOnOneElementAndOnAMesh) {
   AcstInitialState initial;
   initial.void_ratio = 0.75;
   // The FE default integration (implicit, one step per increment): the update is smooth in the
   // strain increment, so Newton converges to round-off on both meshes.
   const AcstMaterial material(parameters(), initial);
-  TriaxialOptions options;
-  options.width = 0.5;
-  options.height = 1.0;
-  options.confining_pressure = 100e3;
+  TriaxialOptions options = specimen_options();
   options.axial_strain_end = 0.01;
   options.n_steps = 10;
   const TriaxialResult one = run_triaxial(material, options);
@@ -166,10 +173,7 @@ TEST(AcstMaterial, AStepThatCannotBeCutStopsNamingThePointTheIncrementAndTheStat
   AcstInitialState initial;
   initial.void_ratio = 0.75;
   const AcstMaterial material(parameters(), initial);
-  TriaxialOptions options;
-  options.width = 0.5;
-  options.height = 1.0;
-  options.confining_pressure = 100e3;
+  TriaxialOptions options = specimen_options();
   options.axial_strain_end = -0.4;
   options.n_steps = 1;
   options.solver.max_cuts = 3;
