@@ -22,16 +22,9 @@
 #include "dem/compaction.h"
 #include "dem/packing.h"
 #include "dem/run_file.h"
+#include "list_argument.h"
 
 namespace {
-
-std::vector<int> parse_list(const std::string& text) {
-  std::vector<int> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) values.push_back(std::atoi(item.c_str()));
-  return values;
-}
 
 dem::Simulation jammed_packing(int bodies, bool clumps, std::uint64_t seed,
                                const std::string& cache_folder) {
@@ -137,8 +130,8 @@ int main(int argc, char** argv) {
   bool features = false;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string flag = argv[k], value = argv[k + 1];
-    if (flag == "--bodies") body_counts = parse_list(value);
-    else if (flag == "--threads") thread_counts = parse_list(value);
+    if (flag == "--bodies") body_counts = bench::parse_int_list(value);
+    else if (flag == "--threads") thread_counts = bench::parse_int_list(value);
     else if (flag == "--steps") steps = std::atoi(value.c_str());
     else if (flag == "--seed") seed = std::strtoull(value.c_str(), nullptr, 10);
     else if (flag == "--cache") cache_folder = value;

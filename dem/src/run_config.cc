@@ -40,8 +40,9 @@ sort_every_builds = 10         # spatial re-sort of the bodies every N list buil
 local_damping = 0.0            # Cundall damping during shearing
 density_scaling = 1.0          # mass scaling (>= 1), reported
 max_overlap_ratio = 0.25       # overlap / radius that stops a run as unstable
-servo_gain = 0.5               # wall servo: fraction of the stiffness-estimated correction
+servo_gain = 0.8               # wall servo: fraction of the stiffness-estimated correction
 servo_blend = 0.5              # wall servo: weight of this step's move against the last
+servo_integral_time = 10.0     # wall servo: integral time constant [critical steps]; 0 = off
 
 [preparation]
 method = "compaction"          # "compaction", "deposition" (gravity at loading_angle_deg), "csv"
@@ -151,6 +152,7 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
       {"engine.max_overlap_ratio", real(c.engine.max_overlap_ratio)},
       {"engine.servo_gain", real(c.engine.servo.gain)},
       {"engine.servo_blend", real(c.engine.servo.blend)},
+      {"engine.servo_integral_time", real(c.engine.servo.integral_time)},
       {"preparation.method", text(method)},
       {"preparation.pressure", real(c.preparation.pressure)},
       {"preparation.compaction_friction", real(c.preparation.compaction_friction)},

@@ -305,7 +305,13 @@ void RunFile::write_checkpoint(const SimulationState& state, const CheckpointExt
     std::vector<WallRecord> walls;
     for (const Wall& w : state.walls) walls.push_back(wall_record(w, 0.0));
     h5::write_dataset(g, "walls", h5::wall_record_type().get(), walls.data(), walls.size());
-    write_vector(g, "wall_last_move", state.wall_last_move, H5T_NATIVE_DOUBLE);
+    std::vector<double> last_move, integral;
+    for (const ServoState& servo : state.servo) {
+      last_move.push_back(servo.last_move);
+      integral.push_back(servo.integral);
+    }
+    write_vector(g, "wall_last_move", last_move, H5T_NATIVE_DOUBLE);
+    write_vector(g, "wall_servo_integral", integral, H5T_NATIVE_DOUBLE);
     group.reset();
     if (h5::exists(root, "checkpoint")) H5Ldelete(root, "checkpoint", H5P_DEFAULT);
     h5::check_status(H5Lmove(root, "checkpoint_new", root, "checkpoint", H5P_DEFAULT, H5P_DEFAULT),
@@ -385,7 +391,16 @@ SimulationState RunFile::read_checkpoint(CheckpointExtras* extras) {
       w.target_stress = r.target_stress;
       s.walls.push_back(w);
     }
-    s.wall_last_move = h5::read_dataset<double>(g, "wall_last_move", H5T_NATIVE_DOUBLE);
+    // Checkpoints of the purely proportional servo (before issue 16) have no integral: it starts
+    // from zero, so such a file continues with the new servo law, not bit for bit.
+    const auto last_move = h5::read_dataset<double>(g, "wall_last_move", H5T_NATIVE_DOUBLE);
+    const auto integral =
+        h5::exists(g, "wall_servo_integral")
+            ? h5::read_dataset<double>(g, "wall_servo_integral", H5T_NATIVE_DOUBLE)
+            : std::vector<double>(s.walls.size(), 0.0);
+    if (last_move.size() != s.walls.size() || integral.size() != s.walls.size())
+      throw std::runtime_error("the checkpoint's servo state does not have one entry per wall");
+    for (std::size_t w = 0; w < s.walls.size(); ++w) s.servo.push_back({last_move[w], integral[w]});
 
     // Drop what was written after the checkpoint.
     if (impl_->writable) {

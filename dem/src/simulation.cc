@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dem/critical_step.h"
 #include "dem/rigid_body.h"
 
 namespace dem {
@@ -70,7 +71,10 @@ Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactPara
       options_(std::move(options)) {
   initialise();
   particles_.update_sphere_positions();
-  refuse_deep_initial_overlaps();
+  ContactList candidates;
+  candidates.build(particles_, walls_, skin_, nullptr, options_.min_parallel_items);
+  refuse_deep_initial_overlaps(candidates);
+  set_time_step(candidates, /*running=*/false);
 }
 
 Simulation::Simulation(SimulationState state, ContactParameters contact,
@@ -85,11 +89,21 @@ Simulation::Simulation(SimulationState state, ContactParameters contact,
       rebuild_due_(state.rebuild_due) {
   initialise();
   max_sphere_move_ = state.max_sphere_move;
-  if (state.wall_last_move.size() != walls_.size())
-    throw std::invalid_argument("Simulation: the saved state has one servo move per wall");
-  wall_last_move_ = std::move(state.wall_last_move);
+  if (state.servo.size() != walls_.size())
+    throw std::invalid_argument("Simulation: the saved state needs one servo state per wall");
+  servo_ = std::move(state.servo);
   const int slots = contacts_.num_slots();
   slots_.assign(slots, SlotResult{});
+  // The step of the restored list is the one the run was using (the same list, the same sum);
+  // a state without a list gets the estimate of the list its first step will build.
+  if (contacts_.num_builds() > 0 &&
+      static_cast<int>(contacts_.build_position.size()) == particles_.num_spheres()) {
+    set_time_step(contacts_, /*running=*/false);
+  } else {
+    ContactList candidates;
+    candidates.build(particles_, walls_, skin_, nullptr, options_.min_parallel_items);
+    set_time_step(candidates, /*running=*/false);
+  }
 }
 
 SimulationState Simulation::state() const {
@@ -101,7 +115,7 @@ SimulationState Simulation::state() const {
   s.step_count = step_count_;
   s.rebuild_due = rebuild_due_;
   s.max_sphere_move = max_sphere_move_;
-  s.wall_last_move = wall_last_move_;
+  s.servo = servo_;
   return s;
 }
 
@@ -130,43 +144,50 @@ void Simulation::initialise() {
   features_.viscous_damping = contact_.normal_damping_ratio > 0.0;
 
   double r_max = 0.0;
-  critical_dt_ = std::numeric_limits<double>::infinity();
   for (int b = 0; b < particles_.num_bodies(); ++b) {
-    const int s = particles_.first_sphere[b];
-    const double r = particles_.sphere_radius[s];
+    const double r = particles_.sphere_radius[particles_.first_sphere[b]];
     if (!(r > 0.0)) throw std::invalid_argument("Simulation: a sphere radius is not positive");
     r_max = std::max(r_max, r);
-    const double lever = std::abs(particles_.sphere_offset[s]) + r;
-    // Density scaling multiplies every mass and inertia in the dynamics.
-    const double m_eff = options_.density_scaling *
-                         std::min({particles_.mass[b],
-                                   particles_.inertia_transverse[b] / (lever * lever),
-                                   particles_.inertia_axial[b] / (r * r)});
-    critical_dt_ = std::min(critical_dt_,
-                            std::sqrt(m_eff / wall_normal_stiffness(contact_.youngs_modulus, r)));
   }
   skin_ = options_.skin_ratio * 2.0 * r_max;
+  one_contact_dt_ =
+      one_contact_critical_step(particles_, contact_, options_.density_scaling);
+  wall_force_.assign(walls_.size(), 0.0);
+  wall_stiffness_.assign(walls_.size(), 0.0);
+  servo_.assign(walls_.size(), ServoState{});
+}
+
+void Simulation::set_time_step(const ContactList& list, bool running) {
+  critical_dt_ = std::min(one_contact_dt_,
+                          stiffness_critical_step(particles_, walls_, list, contact_,
+                                                  options_.density_scaling,
+                                                  options_.min_parallel_items));
   dt_ = options_.time_step > 0.0 ? options_.time_step : options_.time_step_safety * critical_dt_;
-  // One undamped contact is stable up to 2 dt_c, but a packing with several contacts per body is
-  // not: a frictionless jammed packing gains 4.5 %, 23 % and 83 % energy over 500 dt_c at 1, 1.5
-  // and 1.9 dt_c (docs/dem.md). An explicit step gets the bound time_step_safety has.
+  if (!(dt_ > 0.0 && std::isfinite(dt_))) {
+    std::ostringstream msg;
+    msg << "Simulation: the time step is not positive and finite (" << dt_
+        << " s): check the grain masses, sizes and youngs_modulus";
+    throw std::invalid_argument(msg.str());
+  }
+  // The estimate has a margin of sqrt(2) (critical_step.h), which the energy tests confirm;
+  // an explicit step beyond the estimate is refused rather than trusted to that margin.
   if (dt_ > critical_dt_) {
     std::ostringstream msg;
     msg << "Simulation: time_step " << dt_ << " s exceeds the critical step " << critical_dt_
-        << " s (sqrt(m/k) of the lightest body on its stiffest contact), past which a packing's "
-           "energy grows; use time_step_safety (default 0.2) or a time_step below the critical step";
+        << " s of the stiffness the bodies carry through their contacts"
+        << (running ? " (at step " + std::to_string(step_count_) + ", after the contacts changed)"
+                    : "")
+        << ", past which the run is unstable; use time_step_safety (default "
+        << SimulationOptions{}.time_step_safety
+        << ", which follows the contacts) or a smaller time_step";
+    if (running) throw std::runtime_error(msg.str());
     throw std::invalid_argument(msg.str());
   }
-  wall_force_.assign(walls_.size(), 0.0);
-  wall_stiffness_.assign(walls_.size(), 0.0);
-  wall_last_move_.assign(walls_.size(), 0.0);
 }
 
-void Simulation::refuse_deep_initial_overlaps() const {
+void Simulation::refuse_deep_initial_overlaps(const ContactList& candidates) const {
   // An input overlap beyond the limit would stop the first step as "unstable"; say instead which
   // bodies the input put inside each other. Shallower overlaps are pushed apart by the dynamics.
-  ContactList candidates;
-  candidates.build(particles_, walls_, skin_, nullptr, options_.min_parallel_items);
   const Particles& P = particles_;
   const double limit = options_.max_overlap_ratio;
   auto refuse = [&](const std::string& what, double ratio) {
@@ -242,6 +263,7 @@ void Simulation::rebuild_contacts() {
   const int slots = contacts_.num_slots();
   slots_.assign(slots, SlotResult{});
   rebuild_due_ = false;
+  set_time_step(contacts_, /*running=*/true);
 }
 
 template <bool kClumps, bool kFriction, bool kViscous>
@@ -310,10 +332,10 @@ void Simulation::compute_pair_forces() {
     slots_[p].sliding = sliding;
     worst_ratio = std::max(worst_ratio, overlap / std::min(ri, rj));
   }
-  if (worst_ratio > options_.max_overlap_ratio) report_deep_overlap(worst_ratio);
+  if (worst_ratio > options_.max_overlap_ratio) report_deep_pair_overlap(worst_ratio);
 }
 
-void Simulation::report_deep_overlap(double worst_ratio) const {
+void Simulation::report_deep_pair_overlap(double worst_ratio) const {
   // The pair to name, found again serially (this runs once, when the run stops).
   const Particles& P = particles_;
   const ContactList& C = contacts_;
@@ -324,9 +346,14 @@ void Simulation::report_deep_overlap(double worst_ratio) const {
         slots_[p].overlap / std::min(P.sphere_radius[C.pair_i[p]], P.sphere_radius[C.pair_j[p]]);
     if (ratio > largest) largest = ratio, worst = p;
   }
+  report_deep_overlap("bodies " + std::to_string(P.id[P.sphere_body[C.pair_i[worst]]]) + " and " +
+                          std::to_string(P.id[P.sphere_body[C.pair_j[worst]]]),
+                      worst_ratio);
+}
+
+void Simulation::report_deep_overlap(const std::string& what, double ratio) const {
   std::ostringstream msg;
-  msg << "unstable run at step " << step_count_ << ": bodies "
-      << P.id[P.sphere_body[C.pair_i[worst]]] << " and " << P.id[P.sphere_body[C.pair_j[worst]]] << " overlap by " << worst_ratio
+  msg << "unstable run at step " << step_count_ << ": " << what << " overlap by " << ratio
       << " of the smaller sphere radius (limit max_overlap_ratio " << options_.max_overlap_ratio
       << "); time step " << dt_ << " s, critical step " << critical_dt_ << " s.";
   double stress = 0.0;
@@ -350,6 +377,8 @@ void Simulation::compute_wall_forces() {
   const double xi = contact_.stiffness_ratio, mu = contact_.wall_friction;
   std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
   std::fill(wall_stiffness_.begin(), wall_stiffness_.end(), 0.0);
+  double worst_ratio = 0.0;
+  int worst = -1;
   for (int k = 0; k < nw; ++k) {
     const int s = C.wall_sphere[k], w = C.wall_index[k], slot = np + k;
     const Wall& wall = walls_[w];
@@ -397,6 +426,14 @@ void Simulation::compute_wall_forces() {
     slots_[slot].sliding = sliding;
     wall_force_[w] += fn;
     wall_stiffness_[w] += stiffness;
+    if (overlap > worst_ratio * r) worst_ratio = overlap / r, worst = k;
+  }
+  // Wall contacts get the same limit and diagnostic as sphere pairs (the smaller radius is the
+  // sphere's: a wall is a sphere of infinite radius).
+  if (worst_ratio > options_.max_overlap_ratio) {
+    report_deep_overlap("body " + std::to_string(P.id[P.sphere_body[C.wall_sphere[worst]]]) +
+                            " and wall " + std::to_string(C.wall_index[worst]),
+                        worst_ratio);
   }
 }
 
@@ -499,8 +536,7 @@ void Simulation::move_walls() {
     if (wall.mode == WallMode::kStress) {
       const double target = wall.target_stress * wall_area(static_cast<int>(w));
       const double inward = servo_displacement(options_.servo, wall_force_[w], target,
-                                               wall_stiffness_[w], wall_last_move_[w], dt_);
-      wall_last_move_[w] = inward;
+                                               wall_stiffness_[w], dt_, critical_dt_, servo_[w]);
       const double along = wall.upper ? -inward : inward;
       wall.velocity = along / dt_;
     }

@@ -71,7 +71,7 @@ Eigen::Matrix3d particle_axis_fabric(const Particles& particles) {
 }
 
 Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
-                           Eigen::Vector3d* hi) {
+                           Eigen::Vector3d* hi, double max_overlap_ratio) {
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("cannot read the packing file " + path);
   Particles particles;
@@ -108,12 +108,20 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
     std::stringstream row(line);
     std::string cell;
     while (std::getline(row, cell, ',')) {
+      // The whole cell must be one finite number ("5e-05abc" and "6e-05 7e-05" are not).
+      const std::size_t first = cell.find_first_not_of(" \t\r");
+      const std::size_t last = cell.find_last_not_of(" \t\r");
+      const std::string value = first == std::string::npos ? "" : cell.substr(first, last - first + 1);
+      std::size_t used = 0;
+      double x = 0.0;
       try {
-        std::size_t used = 0;
-        v.push_back(std::stod(cell, &used));
+        x = std::stod(value, &used);
       } catch (const std::exception&) {
-        fail("'" + cell + "' is not a number");
+        used = 0;
       }
+      if (value.empty() || used != value.size()) fail("'" + cell + "' is not a number");
+      if (!std::isfinite(x)) fail("'" + cell + "' is not finite");
+      v.push_back(x);
     }
     if (v.size() != 7 && v.size() != 10) fail("a row needs 7 or 10 values, found " + std::to_string(v.size()));
     const Eigen::Vector3d centre(v[0], v[1], v[2]), axis(v[3], v[4], v[5]);
@@ -126,12 +134,25 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
   }
   if (!have_box) throw std::invalid_argument(path + ": no '# box: xlo ylo zlo xhi yhi zhi' line");
   if (particles.num_bodies() == 0) throw std::invalid_argument(path + ": no bodies");
+  // A packing compacted by another code presses into its walls as wall contacts under load do;
+  // compaction restores the balance. Deeper than the engine's overlap limit is an error.
+  static const char* kWallName[3][2] = {{"x lower", "x upper"}, {"y lower", "y upper"},
+                                         {"z lower", "z upper"}};
   for (int s = 0; s < particles.num_spheres(); ++s) {
     const Eigen::Vector3d& x = particles.sphere_position[s];
     const double r = particles.sphere_radius[s];
-    if ((x.array() - r < lo->array()).any() || (x.array() + r > hi->array()).any())
-      throw std::invalid_argument(path + ": body " + std::to_string(particles.sphere_body[s]) +
-                                  " sticks out of the box");
+    for (int axis = 0; axis < 3; ++axis)
+      for (int upper = 0; upper < 2; ++upper) {
+        const double overlap = upper ? x[axis] + r - (*hi)[axis] : (*lo)[axis] - (x[axis] - r);
+        if (overlap > max_overlap_ratio * r) {
+          std::ostringstream msg;
+          msg << path << ": body " << particles.sphere_body[s] << " (data row "
+              << particles.sphere_body[s] + 1 << ") overlaps the " << kWallName[axis][upper]
+              << " wall of the box by " << overlap / r << " of its sphere radius (limit "
+              << "max_overlap_ratio " << max_overlap_ratio << ")";
+          throw std::invalid_argument(msg.str());
+        }
+      }
   }
   return particles;
 }
@@ -151,7 +172,7 @@ Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
   law.friction = prep.compaction_friction;
 
   if (prep.method == PreparationMethod::kCsv) {
-    loose = load_csv_packing(prep.csv_path, config.grains, &lo, &hi);
+    loose = load_csv_packing(prep.csv_path, config.grains, &lo, &hi, options.max_overlap_ratio);
     r.method = "csv packing " + prep.csv_path;
   } else if (prep.method == PreparationMethod::kCompaction) {
     loose = random_lattice_packing(config.num_bodies, config.grains, config.seed);

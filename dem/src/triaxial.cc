@@ -162,7 +162,9 @@ std::vector<double> TriaxialTest::series_row() const {
   const double cp = c.trace() / 3.0, cq = c(2, 2) - 0.5 * (c(0, 0) + c(1, 1));
   const MacroRecord m = sim_.macro_record();
   const double inertial =
-      p > 0.0 ? options_.strain_rate * mean_diameter_ * std::sqrt(mean_density_ / p) : 0.0;
+      p > 0.0 ? options_.strain_rate * mean_diameter_ *
+                    std::sqrt(sim_.options().density_scaling * mean_density_ / p)
+              : 0.0;
   return {static_cast<double>(sim_.step_count()), sim_.time(), axial_strain(),
           (width0_[0] - extent(0)) / width0_[0], (width0_[1] - extent(1)) / width0_[1],
           (volume0_ - sim_.box_volume()) / volume0_, void_ratio(),
@@ -213,10 +215,11 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
   // The first row needs the wall forces of a step taken with the platens moving.
   if (!resumed) sim_.step();
   const double platen_speed = 0.5 * options_.strain_rate * height0_;
-  const double strain_per_step = 2.0 * platen_speed * sim_.time_step() / height0_;
   TriaxialSummary summary;
   summary.stop = TriaxialStop::kMaxStrain;
   for (;;) {
+    // The time step follows the contacts, so the strain of one step is read afresh.
+    const double strain_per_step = 2.0 * platen_speed * sim_.time_step() / height0_;
     const double strain = axial_strain();
     if (strain + 0.5 * strain_per_step < next_output_) {
       const auto steps = static_cast<std::int64_t>(

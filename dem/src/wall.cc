@@ -13,17 +13,35 @@ std::string ServoParameters::validate() const {
     error << "servo max_speed must be positive (got " << max_speed << " m/s); ";
   if (!(blend > 0.0 && blend <= 1.0))
     error << "servo blend must lie in (0, 1] (got " << blend << "); ";
+  if (!(integral_time == 0.0 || (integral_time >= 1.0 && std::isfinite(integral_time))))
+    error << "servo integral_time must be 0 (off) or >= 1 critical step (got " << integral_time
+          << "); ";
   return error.str();
 }
 
 double servo_displacement(const ServoParameters& servo, double force, double target_force,
-                          double stiffness, double previous_displacement, double dt) {
+                          double stiffness, double dt, double critical_step, ServoState& state) {
   const double cap = servo.max_speed * dt;
-  // With no contact the wall has nothing to push against: advance at the capped speed.
-  double move = stiffness > 0.0 ? servo.gain * (target_force - force) / stiffness
-                                 : (target_force > 0.0 ? cap : 0.0);
-  move = std::clamp(move, -cap, cap);
-  return servo.blend * move + (1.0 - servo.blend) * previous_displacement;
+  if (!(stiffness > 0.0)) {
+    // No contact: nothing to push against, and nothing learned about the specimen's speed.
+    state.integral = 0.0;
+    state.last_move = target_force > 0.0 ? cap : 0.0;
+    return state.last_move;
+  }
+  const double correction = servo.gain * (target_force - force) / stiffness;
+  double integral = state.integral;
+  if (servo.integral_time > 0.0)
+    integral += dt / (servo.integral_time * critical_step) * correction;
+  integral = std::clamp(integral, -cap, cap);
+  double move = servo.blend * (correction + integral) + (1.0 - servo.blend) * state.last_move;
+  if (std::abs(move) > cap) {
+    move = std::clamp(move, -cap, cap);
+    // Anti-windup: while the cap binds, do not accumulate further in its direction.
+    if ((integral - state.integral) * move > 0.0) integral = state.integral;
+  }
+  state.integral = integral;
+  state.last_move = move;
+  return move;
 }
 
 }  // namespace dem

@@ -137,6 +137,42 @@ TEST(Preparation, LoadsACsvPackingAndNamesBadLines) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find(":3: 'abc' is not a number"), std::string::npos) << e.what();
   }
+  // A cell must be one whole number.
+  for (const std::string cell : {"5e-05abc", "6e-05 7e-05", "nan", "inf", ""}) {
+    {
+      std::ofstream out(path);
+      out << "# box: 0 0 0 4e-4 4e-4 4e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n1e-4," << cell
+          << ",1e-4,1,0,0,5e-5\n";
+    }
+    try {
+      load_csv_packing(path, GrainSpec{}, &lo, &hi);
+      FAIL() << "the cell '" << cell << "' was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(":3: '" + cell + "' is not"), std::string::npos) << e.what();
+    }
+  }
+  // Overlapping a wall as loaded wall contacts do (10 % of the radius) is accepted, a third of
+  // the radius is refused naming the body, the wall and the overlap.
+  for (const double overlap : {0.1, 0.33}) {
+    {
+      std::ofstream out(path);
+      out << "# box: 0 0 0 4e-4 4e-4 4e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n"
+          << "2e-4,2e-4,2e-4,1,0,0,5e-5\n"
+          << "2e-4,2e-4," << 4e-4 - (1.0 - overlap) * 2.5e-5 << ",1,0,0,5e-5\n";
+    }
+    if (overlap < 0.25) {
+      EXPECT_EQ(load_csv_packing(path, GrainSpec{}, &lo, &hi).num_bodies(), 2);
+      continue;
+    }
+    try {
+      load_csv_packing(path, GrainSpec{}, &lo, &hi);
+      FAIL() << "an overlap of " << overlap << " radii was accepted";
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("body 1 (data row 2) overlaps the z upper wall of the box by 0.33"),
+                std::string::npos) << what;
+    }
+  }
   std::remove(path.c_str());
 }
 

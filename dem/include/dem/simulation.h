@@ -26,7 +26,8 @@
 namespace dem {
 
 struct SimulationOptions {
-  /// Time step [s]; 0 picks time_step_safety x the critical step. At most the critical step.
+  /// Time step [s]; 0 picks time_step_safety x the critical step, refreshed at every list
+  /// build. An explicit step must stay below the critical step all along the run.
   double time_step = 0.0;
   /// Fraction of the critical step used when time_step is 0.
   double time_step_safety = 0.2;
@@ -69,7 +70,7 @@ struct SimulationState {
   std::int64_t step_count = 0;
   bool rebuild_due = true;
   double max_sphere_move = 0.0;
-  std::vector<double> wall_last_move;  ///< the servo's previous move of each wall [m]
+  std::vector<ServoState> servo;  ///< the servo state of each wall
 };
 
 class Simulation {
@@ -92,8 +93,9 @@ class Simulation {
   double time() const { return time_; }
   std::int64_t step_count() const { return step_count_; }
   double time_step() const { return dt_; }
-  /// sqrt(m_eff / K_max) over the bodies, m_eff the smallest of the mass and the rotational
-  /// inertias over squared lever arms, K_max the stiffest contact a body can have (a wall).
+  /// The critical step of the current candidate contacts: the stiffness each body carries
+  /// through them (critical_step.h), refreshed at every list build, and at most the one-contact
+  /// bound. The time step follows it (time_step_safety x it) unless time_step is explicit.
   double critical_time_step() const { return critical_dt_; }
   const SceneFeatures& features() const { return features_; }
   const Particles& particles() const { return particles_; }
@@ -152,10 +154,16 @@ class Simulation {
   void initialise();  ///< validation, features, critical step, scratch arrays
   /// Throws std::invalid_argument naming the bodies (or body and wall) of an initial overlap
   /// beyond max_overlap_ratio.
-  void refuse_deep_initial_overlaps() const;
-  /// Throws the "unstable run" error for an overlap beyond the limit, naming the bodies and the
-  /// stress on the walls.
-  [[noreturn]] void report_deep_overlap(double worst_ratio) const;
+  void refuse_deep_initial_overlaps(const ContactList& candidates) const;
+  /// The critical step of `list` (stiffness_critical_step, capped by the one-contact bound) and
+  /// the time step from it; refuses an explicit time step above it (invalid_argument before the
+  /// run, runtime_error while `running`).
+  void set_time_step(const ContactList& list, bool running);
+  /// Throws the "unstable run" error for an overlap beyond the limit, naming `what` overlaps
+  /// (two bodies, or a body and a wall) and the stress on the walls.
+  [[noreturn]] void report_deep_overlap(const std::string& what, double ratio) const;
+  /// The same for the deepest sphere pair, found again serially.
+  [[noreturn]] void report_deep_pair_overlap(double worst_ratio) const;
 
   Particles particles_;
   std::vector<Wall> walls_;
@@ -163,7 +171,7 @@ class Simulation {
   SimulationOptions options_;
   SceneFeatures features_;
   ContactList contacts_;
-  double dt_ = 0.0, critical_dt_ = 0.0, skin_ = 0.0;
+  double dt_ = 0.0, critical_dt_ = 0.0, one_contact_dt_ = 0.0, skin_ = 0.0;
   double time_ = 0.0;
   double max_sphere_move_ = 0.0;  ///< since the last list build [m]
   std::int64_t step_count_ = 0;
@@ -179,7 +187,8 @@ class Simulation {
     std::uint8_t sliding = 0;
   };
   std::vector<SlotResult> slots_;
-  std::vector<double> wall_force_, wall_stiffness_, wall_last_move_;
+  std::vector<double> wall_force_, wall_stiffness_;
+  std::vector<ServoState> servo_;
   PhaseTimings timings_;
 };
 

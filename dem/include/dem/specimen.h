@@ -45,9 +45,12 @@ Eigen::Matrix3d contact_normal_fabric(const Simulation& simulation);
 /// (1/N) sum e e of the clump axes.
 Eigen::Matrix3d particle_axis_fabric(const Particles& particles);
 
-/// Reads a packing from CSV (format in docs/config.md): bodies and the box [lo, hi].
-/// Throws std::invalid_argument naming the line at fault.
+/// Reads a packing from CSV (format in docs/config.md): bodies and the box [lo, hi]. A sphere
+/// may overlap a wall of the box by up to `max_overlap_ratio` of its radius (as wall contacts
+/// under load do). Throws std::invalid_argument naming the line at fault, or the body, the wall
+/// and the overlap.
 Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
-                           Eigen::Vector3d* hi);
+                           Eigen::Vector3d* hi,
+                           double max_overlap_ratio = SimulationOptions{}.max_overlap_ratio);
 
 }  // namespace dem

@@ -28,20 +28,40 @@ struct Wall {
   }
 };
 
-/// The servo of the paper: estimate the wall's stiffness from its contacts, move it by the
-/// force error over that stiffness times a gain, cap the speed, and blend with the last move.
+/// The wall servo: a proportional-integral controller on the wall's normal force, in the
+/// velocity form that carries the wall's speed from step to step (feed-forward).
+///
+/// The proportional part is the servo of the paper: the force error over the wall's contact
+/// stiffness times a gain. Alone it must lag a specimen that pushes the wall at a speed v by a
+/// force error of about K v dt / gain (K the wall's stiffness), which grows with the time step,
+/// the specimen width and the strain rate. The integral part accumulates the corrections into the
+/// wall's own speed, so the steady error behind a steadily moving specimen is zero; its time
+/// constant is counted in critical steps because the specimen's response time is (a shorter one
+/// makes the loop oscillate with the grains behind the wall, docs/dem.md). The move is capped at
+/// max_speed, and the integral is held while the cap binds (anti-windup).
 struct ServoParameters {
-  double gain = 0.5;              ///< fraction of the stiffness-estimated correction per step
+  double gain = 0.8;              ///< fraction of the stiffness-estimated correction per step
   double max_speed = 0.5;         ///< cap on the wall speed [m/s]
   double blend = 0.5;             ///< weight of this step's move against the previous one
+  /// Integral time constant in critical steps (T_i = integral_time x the critical step); 0 turns
+  /// the integral action off (the purely proportional servo of the first versions).
+  double integral_time = 10.0;
 
   std::string validate() const;
 };
 
+/// What the servo carries from one step to the next, per wall.
+struct ServoState {
+  double last_move = 0.0;  ///< the previous step's displacement along the inward normal [m]
+  double integral = 0.0;   ///< accumulated correction per step, the learned speed x dt [m]
+};
+
 /// Displacement of a stress-controlled wall along its inward normal for this step [m]
-/// (positive: towards the bodies). `force` is the compressive normal force the bodies put on the
-/// wall, `stiffness` the sum of the normal stiffnesses of its contacts (0 when it has none).
+/// (positive: towards the bodies), and the servo state updated. `force` is the compressive
+/// normal force the bodies put on the wall, `stiffness` the sum of the normal stiffnesses of its
+/// contacts (0 when it has none: the wall then advances at the capped speed towards a positive
+/// target), `critical_step` the engine's critical time step [s].
 double servo_displacement(const ServoParameters& servo, double force, double target_force,
-                          double stiffness, double previous_displacement, double dt);
+                          double stiffness, double dt, double critical_step, ServoState& state);
 
 }  // namespace dem
