@@ -76,6 +76,7 @@ CASES = {
     "combo_rate100_safety0.5": {"triaxial.strain_rate": 100.0, "engine.time_step_safety": 0.5},
     "combo_rate100_safety0.7": {"triaxial.strain_rate": 100.0, "engine.time_step_safety": 0.7},
     "combo_rate100_safety1.0": {"triaxial.strain_rate": 100.0, "engine.time_step_safety": 1.0},
+    "combo_rate200_safety1.0": {"triaxial.strain_rate": 200.0, "engine.time_step_safety": 1.0},
 }
 
 

@@ -75,6 +75,7 @@ Simulation::Simulation(Particles particles, std::vector<Wall> walls, ContactPara
   candidates.build(particles_, walls_, skin_, nullptr, options_.min_parallel_items);
   refuse_deep_initial_overlaps(candidates);
   set_time_step(candidates, /*running=*/false);
+  last_step_dt_ = dt_;
 }
 
 Simulation::Simulation(SimulationState state, ContactParameters contact,
@@ -104,6 +105,9 @@ Simulation::Simulation(SimulationState state, ContactParameters contact,
     candidates.build(particles_, walls_, skin_, nullptr, options_.min_parallel_items);
     set_time_step(candidates, /*running=*/false);
   }
+  // A state is saved between steps, after which the step changes only at the next list build:
+  // the last step had the length of the present one.
+  last_step_dt_ = dt_;
 }
 
 SimulationState Simulation::state() const {
@@ -162,7 +166,16 @@ void Simulation::set_time_step(const ContactList& list, bool running) {
                           stiffness_critical_step(particles_, walls_, list, contact_,
                                                   options_.density_scaling,
                                                   options_.min_parallel_items));
+  const double previous_dt = dt_;
   dt_ = options_.time_step > 0.0 ? options_.time_step : options_.time_step_safety * critical_dt_;
+  // The servo carries displacements per step: keep the wall speeds they stand for.
+  if (running && previous_dt > 0.0 && dt_ != previous_dt) {
+    const double scale = dt_ / previous_dt;
+    for (ServoState& servo : servo_) {
+      servo.last_move *= scale;
+      servo.integral *= scale;
+    }
+  }
   if (!(dt_ > 0.0 && std::isfinite(dt_))) {
     std::ostringstream msg;
     msg << "Simulation: the time step is not positive and finite (" << dt_
@@ -273,7 +286,8 @@ void Simulation::compute_pair_forces() {
   const int np = C.num_pairs();
   const double young = contact_.youngs_modulus;
   const double xi = contact_.stiffness_ratio, mu = contact_.friction;
-  const double beta = contact_.normal_damping_ratio, dt = dt_;
+  // The tangential increment is the displacement of the last step, v(t - dt/2) times its length.
+  const double beta = contact_.normal_damping_ratio, dt = last_step_dt_;
   double worst_ratio = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : worst_ratio) \
     if (np >= options_.min_parallel_items)
@@ -411,10 +425,10 @@ void Simulation::compute_wall_forces() {
       }
       if constexpr (kWallFriction) {
         if (C.wall_touching[k]) {
-          const double twirl = 0.5 * dt_ * P.angular_velocity[b].dot(n);
+          const double twirl = 0.5 * last_step_dt_ * P.angular_velocity[b].dot(n);
           ft = rotate_with_contact_frame(C.wall_tangential[k], n, n, twirl);
         }
-        ft -= (xi * stiffness * dt_) * (v_rel - vn * n);
+        ft -= (xi * stiffness * last_step_dt_) * (v_rel - vn * n);
         sliding = apply_coulomb_limit(ft, mu * fn);
         C.wall_tangential[k] = ft;
       }
@@ -472,6 +486,9 @@ void Simulation::integrate() {
   Particles& P = particles_;
   const int nb = P.num_bodies();
   const double dt = dt_, alpha = options_.local_damping;
+  // Velocities live at half steps: the kick spans from the middle of the last step to the middle
+  // of this one (equal to dt unless the step changed at this step's list build).
+  const double kick = 0.5 * (last_step_dt_ + dt_);
   const double inv_scale = 1.0 / options_.density_scaling;  // masses and inertias scale alike
   const Eigen::Vector3d g = options_.gravity;
   const auto& reference = contacts_.build_position;
@@ -485,13 +502,13 @@ void Simulation::integrate() {
     if constexpr (kGravity) f += (options_.density_scaling * P.mass[b]) * g;
     if constexpr (kDamping) f = locally_damped(f, P.velocity[b], alpha);
     const Eigen::Vector3d acceleration = (inv_scale / P.mass[b]) * f;
-    P.velocity[b] += dt * acceleration;
+    P.velocity[b] += kick * acceleration;
     P.position[b] += dt * P.velocity[b];
     const int s0 = P.first_sphere[b];
     if constexpr (kRotation) {
       Eigen::Vector3d t = P.torque[b];
       if constexpr (kDamping) t = locally_damped(t, P.angular_velocity[b], alpha);
-      P.angular_momentum[b] += dt * t;
+      P.angular_momentum[b] += kick * t;
       if (kClumps && P.num_body_spheres[b] == 2) {
         const Eigen::Vector3d& L = P.angular_momentum[b];
         const double ia = P.inertia_axial[b] * options_.density_scaling;
@@ -572,6 +589,7 @@ void Simulation::step() {
   timings_.integration += seconds_since(start);
 
   time_ += dt_;
+  last_step_dt_ = dt_;
   ++step_count_;
 }
 

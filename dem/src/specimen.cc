@@ -104,6 +104,8 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
       have_header = true;
       continue;
     }
+    const std::size_t end = line.find_last_not_of(" \t\r");
+    if (line[end] == ',') fail("the row ends with an empty cell");
     std::vector<double> v;
     std::stringstream row(line);
     std::string cell;
@@ -143,12 +145,13 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
     const double r = particles.sphere_radius[s];
     for (int axis = 0; axis < 3; ++axis)
       for (int upper = 0; upper < 2; ++upper) {
-        const double overlap = upper ? x[axis] + r - (*hi)[axis] : (*lo)[axis] - (x[axis] - r);
-        if (overlap > max_overlap_ratio * r) {
+        // The ratio as Simulation measures it, so the two checks agree at the limit.
+        const double ratio = 1.0 - (upper ? (*hi)[axis] - x[axis] : x[axis] - (*lo)[axis]) / r;
+        if (ratio > max_overlap_ratio) {
           std::ostringstream msg;
           msg << path << ": body " << particles.sphere_body[s] << " (data row "
               << particles.sphere_body[s] + 1 << ") overlaps the " << kWallName[axis][upper]
-              << " wall of the box by " << overlap / r << " of its sphere radius (limit "
+              << " wall of the box by " << ratio << " of its sphere radius (limit "
               << "max_overlap_ratio " << max_overlap_ratio << ")";
           throw std::invalid_argument(msg.str());
         }

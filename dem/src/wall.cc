@@ -29,15 +29,17 @@ double servo_displacement(const ServoParameters& servo, double force, double tar
     return state.last_move;
   }
   const double correction = servo.gain * (target_force - force) / stiffness;
-  double integral = state.integral;
+  // Integral time 0 is the proportional servo: no integral, not even one carried in a state.
+  double integral = 0.0;
   if (servo.integral_time > 0.0)
-    integral += dt / (servo.integral_time * critical_step) * correction;
+    integral = state.integral + dt / (servo.integral_time * critical_step) * correction;
   integral = std::clamp(integral, -cap, cap);
   double move = servo.blend * (correction + integral) + (1.0 - servo.blend) * state.last_move;
   if (std::abs(move) > cap) {
     move = std::clamp(move, -cap, cap);
     // Anti-windup: while the cap binds, do not accumulate further in its direction.
-    if ((integral - state.integral) * move > 0.0) integral = state.integral;
+    if (servo.integral_time > 0.0 && (integral - state.integral) * move > 0.0)
+      integral = std::clamp(state.integral, -cap, cap);
   }
   state.integral = integral;
   state.last_move = move;

@@ -99,6 +99,18 @@ TEST(Servo, NeverExceedsItsSpeedCap) {
         }
 }
 
+TEST(Servo, IntegralTimeZeroDropsACarriedIntegral) {
+  // A state carried from a run with the integral on (compaction into shearing, a resume with
+  // the setting changed) must not leave a constant bias in the proportional servo.
+  ServoParameters servo;
+  servo.integral_time = 0.0;
+  const double dt = 1e-3, cap = servo.max_speed * dt;
+  ServoState state{0.0, 0.5 * cap};
+  const double move = servo_displacement(servo, kTarget, kTarget, kStiffness, dt, dt, state);
+  EXPECT_EQ(move, 0.0);  // no force error: the blend of zero and the last move (zero)
+  EXPECT_EQ(state.integral, 0.0);
+}
+
 TEST(Servo, RefusesANonPhysicalIntegralTime) {
   ServoParameters servo;
   for (double bad : {-1.0, 0.5, std::nan(""), HUGE_VAL}) {

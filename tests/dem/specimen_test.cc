@@ -151,6 +151,16 @@ TEST(Preparation, LoadsACsvPackingAndNamesBadLines) {
       EXPECT_NE(std::string(e.what()).find(":3: '" + cell + "' is not"), std::string::npos) << e.what();
     }
   }
+  {
+    std::ofstream out(path);
+    out << "# box: 0 0 0 4e-4 4e-4 4e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n1e-4,1e-4,1e-4,1,0,0,5e-5,\n";
+  }
+  try {
+    load_csv_packing(path, GrainSpec{}, &lo, &hi);
+    FAIL() << "a row ending with a comma was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(":3: the row ends with an empty cell"), std::string::npos) << e.what();
+  }
   // Overlapping a wall as loaded wall contacts do (10 % of the radius) is accepted, a third of
   // the radius is refused naming the body, the wall and the overlap.
   for (const double overlap : {0.1, 0.33}) {

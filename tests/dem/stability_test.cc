@@ -129,6 +129,7 @@ TEST(TimeStepSweep, EnergyErrorIsSmallAndSecondOrderBelowTheCriticalStep) {
     Simulation sim = energy_scene_at(s);
     const std::vector<double> e = energy_errors(sim, 500.0 * dt_c, 50);
     error.push_back(largest(e, 0, e.size()));
+    std::printf("safety %.2f: largest energy error %.2e over 500 dt_c\n", s, error.back());
     EXPECT_LT(error.back(), 0.01) << "safety " << s;
   }
   // Leapfrog is second order: the error falls as dt^2 between successive safety factors.

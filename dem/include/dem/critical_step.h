@@ -7,10 +7,12 @@
 // with l the lever to the contact point (k_t = 0 where the scene has no friction), and takes the larger of lambda_max(K_t) / m and
 // lambda_max(J^-1/2 K_r J^-1/2) (J the inertia tensor), as YADE's GlobalStiffnessTimeStepper
 // sums per-body stiffnesses (here with the exact largest eigenvalue instead of per-axis sums).
-// The body's step is 1/sqrt of that; the scene's is the smallest over the bodies. Neighbours
-// moving against each other can raise the frequency of the coupled system by up to sqrt(2) over
-// this per-body estimate (Gershgorin), which leapfrog's stability limit 2/omega covers: the
-// estimate is stable up to a safety factor of sqrt(2), and energy tests bound it in docs/dem.md.
+// The body's step is 1/sqrt of that; the scene's is the smallest over the bodies. It is an
+// estimate, not a bound: neighbours moving against each other (up to sqrt(2) in frequency,
+// Gershgorin), the coupling of a body's translation and rotation through a frictional contact
+// (ignored here, as in YADE) and a contact dashpot all raise the true frequency above it, against
+// leapfrog's limit of 2/omega. Safety 1 was measured stable on jammed frictional packings and in
+// triaxial shear (docs/dem.md, "Time step and stability").
 #pragma once
 
 #include <vector>

@@ -172,6 +172,7 @@ class Simulation {
   SceneFeatures features_;
   ContactList contacts_;
   double dt_ = 0.0, critical_dt_ = 0.0, one_contact_dt_ = 0.0, skin_ = 0.0;
+  double last_step_dt_ = 0.0;  ///< length of the last completed step [s]
   double time_ = 0.0;
   double max_sphere_move_ = 0.0;  ///< since the last list build [m]
   std::int64_t step_count_ = 0;
