@@ -110,7 +110,7 @@ def main():
              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, n, d, rate, safety, it in names:
         m = measures(a.out, name)
-        servo = f"PI, T_i = {it:g} dt_c" if it > 0 else "P (earlier law)"
+        servo = f"PI, T_i = {it:g} dt_c" if it > 0 else "P only (T_i = 0)"
         if m is None:
             lines.append(f"| {n} | {d} | {rate:g} | {safety:g} | {servo} | failed | | | | | |")
             continue

@@ -34,7 +34,7 @@ normal_damping_ratio = 0.0     # contact dashpot, fraction of critical
 
 [engine]
 time_step = 0.0                # [s]; 0 = time_step_safety x critical step
-time_step_safety = 0.2
+time_step_safety = 0.7         # fraction of the critical step (measured choice: docs/config.md)
 skin_ratio = 0.1               # Verlet skin / largest diameter
 sort_every_builds = 10         # spatial re-sort of the bodies every N list builds
 local_damping = 0.0            # Cundall damping during shearing

@@ -30,7 +30,7 @@ struct SimulationOptions {
   /// build. An explicit step must stay below the critical step all along the run.
   double time_step = 0.0;
   /// Fraction of the critical step used when time_step is 0.
-  double time_step_safety = 0.2;
+  double time_step_safety = 0.7;
   /// Verlet skin as a fraction of the largest sphere diameter.
   double skin_ratio = 0.1;
   /// Re-sort the bodies in space every this many list builds (0: never).
