@@ -27,7 +27,7 @@ SEEDS = (1, 2, 3)
 BODIES = 300
 MAX_STRAIN = 0.30
 
-# The base case: the settings of examples/quick_triaxial.toml (the engine defaults; strain rate
+# The base case: the settings examples/quick_triaxial.toml had in issue 8 (then the engine defaults; rate
 # 50 /s where the config default is the paper's 20 /s, case rate_20; a snapshot every 1 % of axial
 # strain instead of 5 %, so that a_c at the peak is resolved), written out in full.
 BASE = {

@@ -93,7 +93,7 @@ def main():
     for name in CASES:
         seeds = [s for s in ref_seeds if runs[name, s] is not None]
         done = [runs[name, s] for s in seeds]
-        setting = ", ".join(f"{k.split('.')[-1]} {v}" for k, v in CASES[name].items()) or "rate 50 /s, safety 0.2 (examples/quick_triaxial.toml)"
+        setting = ", ".join(f"{k.split('.')[-1]} {v}" for k, v in CASES[name].items()) or "rate 50 /s, safety 0.2 (the base of issue 8)"
         if not set(SEEDS) <= set(seeds):
             print(f"| {name} | {setting} | seeds {seeds} of {list(SEEDS)} done |")
             continue

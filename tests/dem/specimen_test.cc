@@ -200,7 +200,7 @@ TEST(RunConfig, ExampleConfigsLoad) {
     EXPECT_NO_THROW(load_run_config(examples + name)) << name;
   }
   const RunConfig fast = load_run_config(examples + "fast_triaxial.toml");
-  EXPECT_EQ(fast.engine.time_step_safety, 0.5);
+  EXPECT_EQ(fast.engine.time_step_safety, 1.0);
   EXPECT_EQ(fast.triaxial.strain_rate, 200.0);
   EXPECT_EQ(parse_run_config(default_run_config_text()).triaxial.strain_rate, 100.0);
 }
