@@ -168,6 +168,12 @@ void Simulation::set_time_step(const ContactList& list, bool running) {
                                                   options_.min_parallel_items));
   const double previous_dt = dt_;
   dt_ = options_.time_step > 0.0 ? options_.time_step : options_.time_step_safety * critical_dt_;
+  if (!(dt_ > 0.0 && std::isfinite(dt_))) {
+    std::ostringstream msg;
+    msg << "Simulation: the time step is not positive and finite (" << dt_
+        << " s): check the grain masses, sizes and youngs_modulus";
+    throw std::invalid_argument(msg.str());
+  }
   // The servo carries displacements per step: keep the wall speeds they stand for.
   if (running && previous_dt > 0.0 && dt_ != previous_dt) {
     const double scale = dt_ / previous_dt;
@@ -176,14 +182,8 @@ void Simulation::set_time_step(const ContactList& list, bool running) {
       servo.integral *= scale;
     }
   }
-  if (!(dt_ > 0.0 && std::isfinite(dt_))) {
-    std::ostringstream msg;
-    msg << "Simulation: the time step is not positive and finite (" << dt_
-        << " s): check the grain masses, sizes and youngs_modulus";
-    throw std::invalid_argument(msg.str());
-  }
-  // The estimate has a margin of sqrt(2) (critical_step.h), which the energy tests confirm;
-  // an explicit step beyond the estimate is refused rather than trusted to that margin.
+  // The estimate is not a bound (critical_step.h): an explicit step beyond it is refused rather
+  // than trusted to the margin the energy tests measured.
   if (dt_ > critical_dt_) {
     std::ostringstream msg;
     msg << "Simulation: time_step " << dt_ << " s exceeds the critical step " << critical_dt_
