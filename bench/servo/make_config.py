@@ -8,14 +8,21 @@ SAFETY the time-step safety factor (default: the engine's). p'0 = sigma_3 = 100 
 sheared to 5 % axial strain with a series row every 0.05 %, no snapshots but the first and last.
 """
 import argparse
+import functools
 import subprocess
 
 COMPACTION_FRICTION = {"dense": 0.15, "loose": 0.5}
 
 
+@functools.lru_cache(maxsize=None)
+def default_config(sffcal):
+    """`sffcal config`, asked once per executable."""
+    return subprocess.run([sffcal, "config"], check=True, capture_output=True, text=True).stdout
+
+
 def config_text(sffcal, bodies, density, rate, safety=None, max_strain=0.05, extra=None):
     """The default config with the sweep's settings (and `extra` key -> value) written in."""
-    text = subprocess.run([sffcal, "config"], check=True, capture_output=True, text=True).stdout
+    text = default_config(sffcal)
     changes = {
         "threads": "1", "bodies": str(bodies),
         "compaction_friction": str(COMPACTION_FRICTION[density]),

@@ -26,8 +26,8 @@ AFTER_STRAIN = 0.005  # the target holds after the first 0.5 % of axial strain
 
 
 def run(job):
-    """Prepares the specimen if needed (under a lock-free check: prepare runs before the pool)
-    and shears it; returns the run's name."""
+    """Shears one specimen (prepared before the pool starts) unless the run exists; returns its
+    name."""
     out, sffcal, name, spec, text = job
     series = os.path.join(out, "runs", name + ".h5.series.csv")
     if os.path.exists(series):
