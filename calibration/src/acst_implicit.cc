@@ -14,8 +14,7 @@ namespace {
 
 using Voigt = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
-using VoigtDerivative = Eigen::Matrix<double, 6, kUnknowns>;
-using Row = Eigen::Matrix<double, 1, kUnknowns>;
+using Row6 = Eigen::Matrix<double, 1, 6>;
 
 // a:b = w . (a * b) for symmetric tensors in Voigt order with tensor shear components.
 const Voigt kWeights = (Voigt() << 1.0, 1.0, 1.0, 2.0, 2.0, 2.0).finished();
@@ -36,18 +35,16 @@ Tensor<double> to_tensor(const Voigt& v) {
   return t;
 }
 
-// The row vector of the contraction a : (d b), d b given by its derivative matrix.
-Row contract_row(const Voigt& a, const VoigtDerivative& db) {
-  const Voigt weighted = kWeights.cwiseProduct(a);
-  Row row;
-  for (int c = 0; c < kUnknowns; ++c) row(c) = weighted.dot(db.col(c));
-  return row;
-}
 
 
 // The derivatives of docs/model.md §3, Eq. (1)-(10) with e held (it is kinematic), chained by hand
 // through the intermediate quantities; checked against Jets of plastic_residual in the tests.
 // With inputs, also the derivatives w.r.t. the known data of the step.
+//
+// Each derivative is kept in the blocks of the unknowns it depends on, suffixes _s (d/d sigma,
+// 6 columns), _a (d/d alpha) and _l (d/d dlambda): the stress ratio and the moduli depend on
+// sigma only, and only the fabric (Eq. 16, through dlambda) carries a dlambda column, so most
+// blocks are 6 x 6 or absent instead of full 6 x 13 rows.
 bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double>& step,
                          const Unknowns<double>& x, Unknowns<double>& r, Jacobian& jacobian,
                          InputDerivatives* inputs) {
@@ -55,34 +52,31 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
   const Voigt sigma = x.segment<6>(0), alpha = x.segment<6>(6);
   const double dlambda = x(kMultiplier);
   const double e = step.void_ratio;
-  VoigtDerivative d_sigma = VoigtDerivative::Zero(), d_alpha = VoigtDerivative::Zero();
-  d_sigma.block<6, 6>(0, 0).setIdentity();
-  d_alpha.block<6, 6>(0, 6).setIdentity();
-  Row d_dlambda = Row::Zero();
-  d_dlambda(kMultiplier) = 1.0;
+  const Matrix6 I = Matrix6::Identity();
 
   // Mean stress, stress ratio, loading direction (Eq. 3-4).
   const double p = (sigma(0) + sigma(1) + sigma(2)) / 3.0;
   if (!(p > 0.0) || !(e > 0.0) || !(e < detail::kElasticVoidLimit)) return false;
   if (!(1.0 - par.c_h * e > 0.0)) return false;
-  Row d_p = Row::Zero();
-  d_p(0) = d_p(1) = d_p(2) = 1.0 / 3.0;
+  const Row6 d_p = kDelta.transpose() / 3.0;  // d p / d sigma
   const Voigt ratio = (sigma - p * kDelta) / p;
-  const VoigtDerivative d_ratio = (d_sigma - kDelta * d_p - ratio * d_p) / p;
-  const Voigt xv = ratio - alpha;
-  const VoigtDerivative d_xv = d_ratio - d_alpha;
+  const Matrix6 d_ratio = (I - (kDelta + ratio) * d_p) / p;  // d / d sigma only
+  const Voigt xv = ratio - alpha;                            // d xv = [d_ratio, -I, 0]
   const double rho2 = kWeights.dot(xv.cwiseProduct(xv));
   if (!(rho2 > detail::kMinDirectionSquared)) return false;
   const double rho = std::sqrt(rho2);
   const Voigt n = xv / rho;
-  const Row d_rho = contract_row(n, d_xv);
-  const VoigtDerivative d_n = (d_xv - n * d_rho) / rho;
+  const Voigt wn = kWeights.cwiseProduct(n);  // a : n = wn . a
+  const Row6 d_rho_s = wn.transpose() * d_ratio, d_rho_a = -wn.transpose();
+  const Matrix6 d_n_s = (d_ratio - n * d_rho_s) / rho;
+  const Matrix6 d_n_a = -(I - n * wn.transpose()) / rho;
 
   // The fabric eliminated by Eq. (16): F = (F_0 + dlambda k_F n) / (1 + dlambda k_F).
   const double fabric_denominator = 1.0 + dlambda * par.k_F;
   const Voigt fabric = (to_voigt(step.start.fabric) + (dlambda * par.k_F) * n) / fabric_denominator;
-  const VoigtDerivative d_fabric =
-      (par.k_F / fabric_denominator) * ((n - fabric) * d_dlambda + dlambda * d_n);
+  const double fabric_factor = dlambda * par.k_F / fabric_denominator;
+  const Matrix6 d_fabric_s = fabric_factor * d_n_s, d_fabric_a = fabric_factor * d_n_a;
+  const Voigt d_fabric_l = (par.k_F / fabric_denominator) * (n - fabric);
 
   // Elastic moduli (Eq. 1) at fixed e.
   const double a = detail::kElasticVoidLimit - e;
@@ -90,75 +84,96 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
                    std::sqrt(p / kAtmosphericPressure);
   const double kappa = 2.0 * (1.0 + par.nu) / (3.0 * (1.0 - 2.0 * par.nu));
   const double K = kappa * G;
-  const Row d_G = (G / (2.0 * p)) * d_p;
-  const Row d_K = kappa * d_G;
+  const Row6 d_G = (G / (2.0 * p)) * d_p;  // d / d sigma only, as d_K = kappa d_G
+  const Row6 d_K = kappa * d_G;
 
   // Lode angle and g (Eq. 4).
   const Tensor<double> n_tensor = to_tensor(n);
   const Voigt n2 = to_voigt(n_tensor * n_tensor);
   double cos3 = detail::kSqrtSix * kWeights.dot(n2.cwiseProduct(n));
-  Row d_cos3 = 3.0 * detail::kSqrtSix * contract_row(n2, d_n);
+  const Row6 w_cos3 = 3.0 * detail::kSqrtSix * kWeights.cwiseProduct(n2).transpose();
+  Row6 d_cos3_s = w_cos3 * d_n_s, d_cos3_a = w_cos3 * d_n_a;
   if (cos3 > 1.0 || cos3 < -1.0) {
     cos3 = std::clamp(cos3, -1.0, 1.0);
-    d_cos3.setZero();
+    d_cos3_s.setZero();
+    d_cos3_a.setZero();
   }
   const double g_denominator = (1.0 + par.c) - (1.0 - par.c) * cos3;
   const double g = 2.0 * par.c / g_denominator;
-  const Row d_g = (g * (1.0 - par.c) / g_denominator) * d_cos3;
+  const double g_factor = g * (1.0 - par.c) / g_denominator;
+  const Row6 d_g_s = g_factor * d_cos3_s, d_g_a = g_factor * d_cos3_a;
 
   // State parameters (Eq. 5-6).
   const double p_ratio = std::pow(p / kAtmosphericPressure, par.xi);
   const double psi = e - (par.e_gamma - par.lambda_c * p_ratio);
-  const Row d_psi = (par.lambda_c * par.xi * p_ratio / p) * d_p;
+  const Row6 d_psi = (par.lambda_c * par.xi * p_ratio / p) * d_p;  // d / d sigma only
   const double A = kWeights.dot(fabric.cwiseProduct(n));
-  const Row d_A = contract_row(n, d_fabric) + contract_row(fabric, d_n);
+  const Row6 w_fabric = kWeights.cwiseProduct(fabric).transpose();
+  const Row6 d_A_s = wn.transpose() * d_fabric_s + w_fabric * d_n_s;
+  const Row6 d_A_a = wn.transpose() * d_fabric_a + w_fabric * d_n_a;
+  const double d_A_l = wn.dot(d_fabric_l);
   const double zeta = psi - par.e_A * (A - 1.0);
-  const Row d_zeta = d_psi - par.e_A * d_A;
+  const Row6 d_zeta_s = d_psi - par.e_A * d_A_s, d_zeta_a = -par.e_A * d_A_a;
+  const double d_zeta_l = -par.e_A * d_A_l;
 
   // Bounding and dilatancy surfaces (Eq. 7-9).
   const double exp_b = std::exp(-par.n_b * psi), exp_d = std::exp(par.n_d * zeta);
   const double M_b = g * par.M_c * exp_b - par.m, M_d = g * par.M_c * exp_d - par.m;
-  const Row d_M_b = par.M_c * exp_b * (d_g - (g * par.n_b) * d_psi);
-  const Row d_M_d = par.M_c * exp_d * (d_g + (g * par.n_d) * d_zeta);
+  const Row6 d_M_b_s = par.M_c * exp_b * (d_g_s - (g * par.n_b) * d_psi);
+  const Row6 d_M_b_a = (par.M_c * exp_b) * d_g_a;
+  const Row6 d_M_d_s = par.M_c * exp_d * (d_g_s + (g * par.n_d) * d_zeta_s);
+  const Row6 d_M_d_a = par.M_c * exp_d * (d_g_a + (g * par.n_d) * d_zeta_a);
+  const double d_M_d_l = par.M_c * exp_d * g * par.n_d * d_zeta_l;
   const Voigt alpha_b = (k * M_b) * n;
-  const VoigtDerivative d_alpha_b = k * (n * d_M_b + M_b * d_n);
-  const double alpha_n = kWeights.dot(alpha.cwiseProduct(n));
-  const Row d_alpha_n = contract_row(n, d_alpha) + contract_row(alpha, d_n);
+  const Matrix6 d_alpha_b_s = k * (n * d_M_b_s + M_b * d_n_s);
+  const Matrix6 d_alpha_b_a = k * (n * d_M_b_a + M_b * d_n_a);
+  const double alpha_n = wn.dot(alpha);
+  const Row6 w_alpha = kWeights.cwiseProduct(alpha).transpose();
+  const Row6 d_alpha_n_s = w_alpha * d_n_s;
+  const Row6 d_alpha_n_a = wn.transpose() + w_alpha * d_n_a;
   const double D = par.A0 * (k * M_d - alpha_n);
-  const Row d_D = par.A0 * (k * d_M_d - d_alpha_n);
+  const Row6 d_D_s = par.A0 * (k * d_M_d_s - d_alpha_n_s);
+  const Row6 d_D_a = par.A0 * (k * d_M_d_a - d_alpha_n_a);
+  const double d_D_l = par.A0 * k * d_M_d_l;
 
   // Hardening (Eq. 10) with the floor of (alpha - alpha_in):n.
   const double b0 = par.G0 * par.h0 * (1.0 - par.c_h * e) / std::sqrt(p / kAtmosphericPressure);
-  const Row d_b0 = (-b0 / (2.0 * p)) * d_p;
+  const Row6 d_b0 = (-b0 / (2.0 * p)) * d_p;  // d / d sigma only
   const Voigt alpha_in = to_voigt(step.start.alpha_in);
-  double distance = alpha_n - kWeights.dot(alpha_in.cwiseProduct(n));
-  Row d_distance = d_alpha_n - contract_row(alpha_in, d_n);
+  const Row6 w_alpha_in = kWeights.cwiseProduct(alpha_in).transpose();
+  double distance = alpha_n - wn.dot(alpha_in);
+  Row6 d_distance_s = d_alpha_n_s - w_alpha_in * d_n_s;
+  Row6 d_distance_a = d_alpha_n_a - w_alpha_in * d_n_a;
   const bool floored = distance < detail::kHardeningFloor;
   if (floored) {
     distance = detail::kHardeningFloor;
-    d_distance.setZero();
+    d_distance_s.setZero();
+    d_distance_a.setZero();
   }
   const double h = b0 / distance;
-  const Row d_h = (d_b0 - h * d_distance) / distance;
+  const Row6 d_h_s = (d_b0 - h * d_distance_s) / distance;
+  const Row6 d_h_a = (-h / distance) * d_distance_a;
 
-  // Residual and its rows.
+  // Residual and its blocks.
   const Voigt flow = 2.0 * G * n + K * D * kDelta;
-  const Voigt r_sigma = (sigma - to_voigt(step.stress_trial) + dlambda * flow) / step.scale;
-  const VoigtDerivative d_r_sigma =
-      (d_sigma + flow * d_dlambda +
-       dlambda * (2.0 * n * d_G + 2.0 * G * d_n + kDelta * (D * d_K + K * d_D))) /
-      step.scale;
+  r.segment<6>(0) = (sigma - to_voigt(step.stress_trial) + dlambda * flow) / step.scale;
   const Voigt back = alpha_b - alpha;
-  const Voigt r_alpha = alpha - to_voigt(step.start.alpha) - (dlambda * (2.0 / 3.0) * h) * back;
-  const VoigtDerivative d_r_alpha =
-      d_alpha - (2.0 / 3.0) * (back * (h * d_dlambda + dlambda * d_h) +
-                               (dlambda * h) * (d_alpha_b - d_alpha));
-  r.segment<6>(0) = r_sigma;
-  r.segment<6>(6) = r_alpha;
+  const double hardening = dlambda * (2.0 / 3.0) * h;
+  r.segment<6>(6) = alpha - to_voigt(step.start.alpha) - hardening * back;
   r(kMultiplier) = rho - k * par.m;
-  jacobian.block<6, kUnknowns>(0, 0) = d_r_sigma;
-  jacobian.block<6, kUnknowns>(6, 0) = d_r_alpha;
-  jacobian.row(kMultiplier) = d_rho;
+  const double inverse_scale = 1.0 / step.scale;
+  jacobian.block<6, 6>(0, 0) =
+      inverse_scale * (I + dlambda * (2.0 * n * d_G + (2.0 * G) * d_n_s +
+                                      kDelta * (D * d_K + K * d_D_s)));
+  jacobian.block<6, 6>(0, 6) = (inverse_scale * dlambda) * ((2.0 * G) * d_n_a + kDelta * (K * d_D_a));
+  jacobian.block<6, 1>(0, kMultiplier) = inverse_scale * (flow + (dlambda * K * d_D_l) * kDelta);
+  jacobian.block<6, 6>(6, 0) = -(2.0 / 3.0) * dlambda * (back * d_h_s + h * d_alpha_b_s);
+  jacobian.block<6, 6>(6, 6) =
+      I - (2.0 / 3.0) * dlambda * (back * d_h_a + h * (d_alpha_b_a - I));
+  jacobian.block<6, 1>(6, kMultiplier) = -((2.0 / 3.0) * h) * back;
+  jacobian.block<1, 6>(kMultiplier, 0) = d_rho_s;
+  jacobian.block<1, 6>(kMultiplier, 6) = d_rho_a;
+  jacobian(kMultiplier, kMultiplier) = 0.0;
   if (!inputs) return true;
 
   // Derivatives w.r.t. the known data at fixed x (consistent tangent, docs/model.md §4): the
@@ -181,8 +196,10 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
     d.alpha_in.setZero();
   else
     d.alpha_in = (-(2.0 / 3.0) * dlambda * h / distance) * back;
-  d.n_weighted = kWeights.cwiseProduct(n);
-  d.fabric_unknowns = d_fabric;
+  d.n_weighted = wn;
+  d.fabric_unknowns.block<6, 6>(0, 0) = d_fabric_s;
+  d.fabric_unknowns.block<6, 6>(0, 6) = d_fabric_a;
+  d.fabric_unknowns.col(kMultiplier) = d_fabric_l;
   return true;
 }
 
@@ -244,8 +261,6 @@ bool solve_plastic(const Parameters<double>& par, const PlasticStep<double>& ste
 }
 
 namespace {
-
-using Row6 = Eigen::Matrix<double, 1, 6>;
 
 // Error measure of docs/model.md §4 between two states: the stress difference relative to
 // ||stress||, and the absolute differences of alpha, F and e.

@@ -9,7 +9,10 @@
 #include <deal.II/fe/fe_values_extractors.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_ilu.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -341,7 +344,6 @@ NewtonLog Solid::solve_increment(double load_end) {
 
   dealii::Vector<double> correction(dof_handler_.n_dofs());
   dealii::Vector<double> minus_residual(dof_handler_.n_dofs());
-  dealii::SparseDirectUMFPACK solver;
 
   for (int k = 0;; ++k) {
     std::string message;
@@ -386,13 +388,46 @@ NewtonLog Solid::solve_increment(double load_end) {
 
     minus_residual = residual_;
     minus_residual *= -1.0;
-    solver.initialize(tangent_matrix_);
-    solver.vmult(correction, minus_residual);
+    solve_linear(minus_residual, correction, log);
     constraints_.distribute(correction);
     solution_ += correction;
     log.update_norms.push_back(correction.l2_norm());
     log.iterations = k + 1;
   }
+}
+
+bool Solid::uses_iterative_solver() const {
+  using LinearSolver = SolverOptions::LinearSolver;
+  return options_.linear_solver == LinearSolver::kIterative ||
+         (options_.linear_solver == LinearSolver::kAutomatic &&
+          dof_handler_.n_dofs() >= options_.iterative_min_dofs);
+}
+
+void Solid::solve_linear(const dealii::Vector<double>& rhs, dealii::Vector<double>& x,
+                         NewtonLog& log) const {
+  if (uses_iterative_solver()) {
+    // GMRES with ILU(0) of the tangent (Saad 2003, §9.3 and §10.3), restarted every 100
+    // iterations. Deterministic: serial, no dependence on the thread count.
+    dealii::SparseILU<double> ilu;
+    ilu.initialize(tangent_matrix_);
+    dealii::SolverControl control(options_.max_linear_iterations, options_.linear_rtol * rhs.l2_norm(), false, false);
+    // Right preconditioning: the tolerance applies to the true residual of the Newton system.
+    dealii::SolverGMRES<dealii::Vector<double>> gmres(
+        control, dealii::SolverGMRES<dealii::Vector<double>>::AdditionalData(100, true));
+    x = 0.0;
+    try {
+      gmres.solve(tangent_matrix_, x, rhs, ilu);
+      log.linear_iterations.push_back(static_cast<int>(control.last_step()));
+      return;
+    } catch (const dealii::SolverControl::NoConvergence&) {
+      log.linear_iterations.push_back(-1);  // fell back to the direct solver
+    } catch (const std::exception&) {       // a zero pivot in the ILU
+      log.linear_iterations.push_back(-1);
+    }
+  }
+  dealii::SparseDirectUMFPACK direct;
+  direct.initialize(tangent_matrix_);
+  direct.vmult(x, rhs);
 }
 
 void Solid::commit() {

@@ -35,6 +35,9 @@ void check(const TriaxialOptions& o) {
     fail("confining_pressure must be >= 0 (compression positive)");
   if (!std::isfinite(o.axial_strain_end)) fail("axial_strain_end must be finite");
   if (o.n_steps == 0) fail("n_steps must be >= 1");
+  if (!(o.solver.linear_rtol > 0.0 && o.solver.linear_rtol < 1.0))
+    fail("solver.linear_rtol must be in (0, 1)");
+  if (o.solver.max_linear_iterations == 0) fail("solver.max_linear_iterations must be >= 1");
 }
 
 TriaxialStep measure(const Solid& solid, unsigned int step) {

@@ -139,6 +139,54 @@ TEST(Triaxial, NewtonConvergesQuadraticallyForANonlinearMaterial) {
   }
 }
 
+// The iterative linear solver (GMRES + ILU) is an inexact Newton step: on a non-homogeneous
+// problem (rough platens: the specimen bulges) it takes the same Newton iterations and reaches
+// the answer of the direct solver to the Newton tolerance; where GMRES cannot reach its tolerance
+// the correction falls back to the direct solver and the answer is the same again.
+TEST(Triaxial, IterativeLinearSolverGivesTheDirectAnswer) {
+  using LinearSolver = SolverOptions::LinearSolver;
+  const testing::HypoelasticTestMaterial material(0.01, 60.0);
+  TriaxialOptions options = elastic_options(3, 3, 4);
+  options.rough_platens = true;
+  options.axial_strain_end = 0.02;
+  options.n_steps = 4;
+  options.solver.linear_solver = LinearSolver::kDirect;
+  const TriaxialResult direct = run_triaxial(material, options);
+  options.solver.linear_solver = LinearSolver::kIterative;
+  const TriaxialResult iterative = run_triaxial(material, options);
+  options.solver.max_linear_iterations = 2;  // GMRES stops short: the corrections fall back
+  const TriaxialResult fallback = run_triaxial(material, options);
+  for (const TriaxialResult* result : {&direct, &iterative, &fallback})
+    ASSERT_TRUE(result->completed) << result->message;
+  ASSERT_EQ(direct.steps.size(), iterative.steps.size());
+  for (std::size_t i = 0; i < direct.steps.size(); ++i) {
+    const TriaxialStep &a = direct.steps[i], &b = iterative.steps[i], &c = fallback.steps[i];
+    EXPECT_EQ(a.newton_iterations, b.newton_iterations) << "step " << i;
+    EXPECT_NEAR(b.q, a.q, 1e-8 * (kP0 + std::abs(a.q))) << "step " << i;
+    EXPECT_NEAR(b.volumetric_strain, a.volumetric_strain, 1e-12) << "step " << i;
+    EXPECT_NEAR(c.q, a.q, 1e-8 * (kP0 + std::abs(a.q))) << "step " << i;
+  }
+  ASSERT_EQ(direct.bulge.size(), iterative.bulge.size());
+  EXPECT_GT(direct.bulge.front().radial_displacement - direct.bulge.back().radial_displacement,
+            0.0) << "rough platens: the specimen bulges at mid-height";
+  for (std::size_t i = 0; i < direct.bulge.size(); ++i)
+    EXPECT_NEAR(iterative.bulge[i].radial_displacement, direct.bulge[i].radial_displacement,
+                1e-9 * std::abs(direct.bulge.front().radial_displacement));
+  int gmres = 0, fell_back = 0;
+  for (const StepReport& report : iterative.reports)
+    for (const NewtonLog& log : report.attempts)
+      for (int n : log.linear_iterations) (n > 0 ? gmres : fell_back) += 1;
+  EXPECT_GT(gmres, 0);
+  EXPECT_EQ(fell_back, 0);
+  int fallbacks = 0;
+  for (const StepReport& report : fallback.reports)
+    for (const NewtonLog& log : report.attempts)
+      for (int n : log.linear_iterations) fallbacks += n < 0;
+  EXPECT_GT(fallbacks, 0);
+  for (const StepReport& report : direct.reports)
+    for (const NewtonLog& log : report.attempts) EXPECT_TRUE(log.linear_iterations.empty());
+}
+
 TEST(Triaxial, StepCuttingRecoversFromAMaterialFailure) {
   const LinearElasticMaterial elastic(kE, kNu);
   const testing::FailingTestMaterial material(elastic, 3e-3);  // one 1e-2 step is too big
@@ -203,6 +251,12 @@ TEST(Triaxial, RejectsBadOptions) {
   EXPECT_THROW(run_triaxial(material, options), std::invalid_argument);
   options = TriaxialOptions();
   options.confining_pressure = -1.0;
+  EXPECT_THROW(run_triaxial(material, options), std::invalid_argument);
+  options = TriaxialOptions();
+  options.solver.linear_rtol = std::nan("");
+  EXPECT_THROW(run_triaxial(material, options), std::invalid_argument);
+  options = TriaxialOptions();
+  options.solver.max_linear_iterations = 0;
   EXPECT_THROW(run_triaxial(material, options), std::invalid_argument);
 }
 

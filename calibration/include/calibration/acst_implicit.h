@@ -184,6 +184,7 @@ class SmallLu {
       if (pivot != k)
         for (int j = 0; j < N; ++j) std::swap(lu_[k][j], lu_[pivot][j]);
       const double inverse = 1.0 / lu_[k][k];
+      inverse_pivot_[k] = inverse;
       for (int i = k + 1; i < N; ++i) {
         const double factor = lu_[i][k] * inverse;
         lu_[i][k] = factor;
@@ -192,27 +193,34 @@ class SmallLu {
     }
     return true;
   }
-  /// A^-1 b for every column of b.
+  /// A^-1 b for every column of b, the columns side by side. Both substitutions in column
+  /// (axpy) order and with the pivots' reciprocals: the updates of one step are independent of
+  /// one another, instead of one chain of dependent operations per row.
   template <int M>
   Eigen::Matrix<double, N, M> solve(const Eigen::Matrix<double, N, M>& b) const {
-    Eigen::Matrix<double, N, M> x;
-    for (int m = 0; m < M; ++m) {
-      double y[N];
-      for (int k = 0; k < N; ++k) y[k] = b(k, m);
-      for (int k = 0; k < N; ++k) std::swap(y[k], y[permutation_[k]]);  // rows swapped whole
-      for (int k = 0; k < N; ++k)
-        for (int i = k + 1; i < N; ++i) y[i] -= lu_[i][k] * y[k];
-      for (int k = N - 1; k >= 0; --k) {
-        for (int j = k + 1; j < N; ++j) y[k] -= lu_[k][j] * y[j];
-        y[k] /= lu_[k][k];
-      }
-      for (int k = 0; k < N; ++k) x(k, m) = y[k];
+    double y[N][M];
+    for (int k = 0; k < N; ++k)
+      for (int m = 0; m < M; ++m) y[k][m] = b(k, m);
+    for (int k = 0; k < N; ++k)  // rows swapped whole
+      if (permutation_[k] != k)
+        for (int m = 0; m < M; ++m) std::swap(y[k][m], y[permutation_[k]][m]);
+    for (int k = 0; k < N; ++k)
+      for (int i = k + 1; i < N; ++i)
+        for (int m = 0; m < M; ++m) y[i][m] -= lu_[i][k] * y[k][m];
+    for (int k = N - 1; k >= 0; --k) {
+      for (int m = 0; m < M; ++m) y[k][m] *= inverse_pivot_[k];
+      for (int i = 0; i < k; ++i)
+        for (int m = 0; m < M; ++m) y[i][m] -= lu_[i][k] * y[k][m];
     }
+    Eigen::Matrix<double, N, M> x;
+    for (int k = 0; k < N; ++k)
+      for (int m = 0; m < M; ++m) x(k, m) = y[k][m];
     return x;
   }
 
  private:
   double lu_[N][N];  // written by compute()
+  double inverse_pivot_[N];
   int permutation_[N];
 };
 

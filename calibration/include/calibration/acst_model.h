@@ -77,7 +77,7 @@ struct IntegrationOptions {
   /// Implicit: the first plastic substep of a fresh loading (alpha = alpha_in: first loading, or
   /// after a load reversal) is 2^-loading_grading of the plastic segment, the next ones double;
   /// they resolve the knee of the hardening law there (0: no grading).
-  int loading_grading = 6;
+  int loading_grading = 4;
   double min_substep = 1e-6;  // smallest substep, as a fraction of the strain increment
   int max_substeps = 100000;  // attempted substeps per update, accepted or rejected
   double min_pressure = 100.0 /*Pa*/;

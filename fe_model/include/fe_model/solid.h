@@ -132,6 +132,12 @@ class Solid {
 
  private:
   void apply_prescribed_displacements(double load, dealii::Vector<double>& u) const;
+  /// Whether the Newton corrections use GMRES (SolverOptions::linear_solver).
+  bool uses_iterative_solver() const;
+  /// Solves tangent x = rhs for a Newton correction (SolverOptions::linear_solver); records the
+  /// GMRES iterations in log.
+  void solve_linear(const dealii::Vector<double>& rhs, dealii::Vector<double>& x,
+                    NewtonLog& log) const;
 
   const dealii::Triangulation<3>& triangulation_;
   const Material& material_;

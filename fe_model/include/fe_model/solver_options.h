@@ -29,6 +29,17 @@ struct SolverOptions {
   /// full integration locks when the plastic flow is (nearly) isochoric or dilatant at a rate
   /// tied to the shear (critical state, rough platens); homogeneous fields are unchanged.
   bool mean_dilatation = true;
+  /// The linear solve of each Newton correction. kDirect: UMFPACK (serial; its cost grows
+  /// fastest with the mesh). kIterative: GMRES preconditioned by an incomplete LU of the tangent,
+  /// to linear_rtol of the residual (an inexact Newton step: the Newton convergence is unchanged
+  /// while linear_rtol is well below residual_rtol^(1/2)); where GMRES does not converge (e.g. a
+  /// strongly indefinite post-peak tangent) that correction falls back to UMFPACK. kAutomatic:
+  /// kIterative from iterative_min_dofs degrees of freedom up, kDirect below.
+  enum class LinearSolver { kAutomatic, kDirect, kIterative };
+  LinearSolver linear_solver = LinearSolver::kAutomatic;
+  double linear_rtol = 1e-8;
+  unsigned int max_linear_iterations = 1000;  ///< GMRES, restarted every 100
+  unsigned int iterative_min_dofs = 2000;
   /// Print the Newton log (residual norms and ratios) to std::cout.
   bool verbose = false;
 };
@@ -44,6 +55,9 @@ struct NewtonLog {
   std::vector<double> residual_norms;
   /// ||du_k|| of each Newton correction.
   std::vector<double> update_norms;
+  /// GMRES iterations of each correction with the iterative solver (-1: it did not converge and
+  /// the direct solver was used); empty with the direct solver.
+  std::vector<int> linear_iterations;
   double force_scale = 0.0;
   MaterialStatus worst_status = MaterialStatus::kOk;
   int n_unreliable_points = 0;
