@@ -2,9 +2,11 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -89,14 +91,20 @@ Setter real(double& target) {
   };
 }
 
+// An integer key in [min_value, max_value], the upper bound at most what the target type holds:
+// range-checked before the narrowing (2^32 + 80 bodies must not run 80).
 template <typename Int>
-Setter integer(Int& target, long long min_value) {
-  return [&target, min_value](const toml::node& n, const std::string& key) {
+Setter integer(Int& target, long long min_value,
+               long long max_value = static_cast<long long>(
+                   std::min<unsigned long long>(std::numeric_limits<Int>::max(),
+                                                std::numeric_limits<long long>::max()))) {
+  return [&target, min_value, max_value](const toml::node& n, const std::string& key) {
     const auto v = n.value<long long>();
     if (!v || !n.is_integer()) throw std::invalid_argument(key + " must be an integer");
-    if (*v < min_value)
-      throw std::invalid_argument(key + " must be >= " + std::to_string(min_value) + " (got " +
-                                  std::to_string(*v) + ")");
+    if (*v < min_value || *v > max_value)
+      throw std::invalid_argument(key + " must be in [" + std::to_string(min_value) + ", " +
+                                  std::to_string(max_value) + "] (got " + std::to_string(*v) +
+                                  ")");
     target = static_cast<Int>(*v);
   };
 }
@@ -132,8 +140,8 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
   double servo_shear = 0.5;
   const std::map<std::string, Setter> setters = {
       {"seed", integer(c.seed, 0)},
-      {"threads", integer(c.threads, 0)},
-      {"bodies", integer(c.num_bodies, 2)},
+      {"threads", integer(c.threads, 0, kMaxThreads)},
+      {"bodies", integer(c.num_bodies, 2, kMaxBodies)},
       {"grains.min_diameter", real(c.grains.min_diameter)},
       {"grains.max_diameter", real(c.grains.max_diameter)},
       {"grains.centre_distance_ratio", real(c.grains.centre_distance_ratio)},

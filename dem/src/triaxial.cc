@@ -104,15 +104,10 @@ TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& option
   width0_[0] = extent(0);
   width0_[1] = extent(1);
   volume0_ = sim_.box_volume();
-  const Particles& p = sim_.particles();
-  double mass = 0.0, diameter = 0.0;
-  for (int b = 0; b < p.num_bodies(); ++b) {
-    solid_volume_ += p.volume[b];
-    mass += p.mass[b];
-    diameter += 2.0 * p.sphere_radius[p.first_sphere[b]];
-  }
-  mean_density_ = mass / solid_volume_;
-  mean_diameter_ = diameter / p.num_bodies();
+  const GrainTotals totals = grain_totals(sim_.particles());
+  solid_volume_ = totals.solid_volume;
+  mean_density_ = totals.mass / totals.solid_volume;
+  mean_diameter_ = totals.mean_diameter;
 
   for (int axis = 0; axis < 2; ++axis)
     for (bool upper : {false, true}) {
@@ -122,6 +117,37 @@ TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& option
     }
   drive_platens();
   initial_void_ratio_ = void_ratio();
+  if (!(std::isfinite(initial_void_ratio_) && initial_void_ratio_ > 0.0 &&
+        std::isfinite(mean_density_) && mean_density_ > 0.0)) {
+    std::ostringstream msg;
+    msg << "triaxial: the specimen's void ratio " << initial_void_ratio_ << " or grain density "
+        << mean_density_ << " kg/m^3 is not positive and finite (box volume " << volume0_
+        << " m^3, solid volume " << solid_volume_ << " m^3)";
+    throw std::invalid_argument(msg.str());
+  }
+}
+
+GrainTotals grain_totals(const Particles& p) {
+  std::vector<int> order(static_cast<std::size_t>(p.num_bodies()));
+  for (int b = 0; b < p.num_bodies(); ++b) order[static_cast<std::size_t>(b)] = b;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return p.id[a] < p.id[b]; });
+  GrainTotals totals;
+  double diameter = 0.0;
+  for (int b : order) {
+    totals.solid_volume += p.volume[b];
+    totals.mass += p.mass[b];
+    diameter += 2.0 * p.sphere_radius[p.first_sphere[b]];
+  }
+  totals.mean_diameter = diameter / std::max(p.num_bodies(), 1);
+  for (double x : {totals.solid_volume, totals.mass, totals.mean_diameter})
+    if (!(std::isfinite(x) && x > 0.0)) {
+      std::ostringstream msg;
+      msg << "the grains' solid volume " << totals.solid_volume << " m^3, mass " << totals.mass
+          << " kg or mean diameter " << totals.mean_diameter
+          << " m is not positive and finite: check grains.min_diameter, max_diameter and density";
+      throw std::invalid_argument(msg.str());
+    }
+  return totals;
 }
 
 void TriaxialTest::drive_platens() {
@@ -221,14 +247,22 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     // The time step follows the contacts, so the strain of one step is read afresh.
     const double strain_per_step = 2.0 * platen_speed * sim_.time_step() / height0_;
     const double strain = axial_strain();
-    if (strain + 0.5 * strain_per_step < next_output_) {
+    // The steps run towards the next row, never past the strain limit: the last row is taken at
+    // max_axial_strain whatever the output interval (an interval of 1 must not crush the
+    // specimen to eps_a = 1).
+    // Half the remaining steps at a time: the step follows the contacts and can grow within a
+    // batch, so a whole batch could jump past the target by many steps.
+    const double target = std::min(next_output_, options_.max_axial_strain);
+    if (strain + 0.5 * strain_per_step < target) {
+      const double remaining = (target - strain) / strain_per_step;
       const auto steps = static_cast<std::int64_t>(
-          std::ceil((next_output_ - strain) / strain_per_step - 1e-9));
+          std::ceil(remaining > 2.0 ? 0.5 * remaining : remaining - 1e-9));
       sim_.run(std::max<std::int64_t>(1, steps));
       continue;
     }
     // An output step.
-    next_output_ += options_.output_strain_interval;
+    if (strain + 0.5 * strain_per_step >= next_output_)
+      next_output_ += options_.output_strain_interval;
     const std::vector<double> row = series_row();
     if (file) file->append_series(row);
     const double eta = row[column("eta")], eps_v = row[column("volumetric_strain")];
@@ -245,7 +279,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     std::size_t window_start = 0;
     const bool critical =
         is_critical_state(history_strain_, history_eta_, history_volume_, options_, &window_start);
-    const bool done = critical || strain >= options_.max_axial_strain;
+    const bool done = critical || strain + 0.5 * strain_per_step >= options_.max_axial_strain;
 
     if (file && (strain >= next_snapshot_ || done)) {
       file->write_snapshot(take_snapshot(sim_, strain));

@@ -58,7 +58,12 @@ TEST(RunConfig, BadInputNamesTheKey) {
   expect_error("[grains]\nmin_diameter = -1e-5\n", "grains.min_diameter");
   expect_error("[contact]\nfriction = -0.2\n", "friction");
   expect_error("bodies = \"ten\"\n", "bodies must be an integer");
-  expect_error("bodies = 1\n", "bodies must be >= 2");
+  expect_error("bodies = 1\n", "bodies must be in [2, 10000000] (got 1)");
+  // Range-checked before narrowing to int: 2^32 + 80 must not run 80 bodies, 2^32 + 1 threads one.
+  expect_error("bodies = 4294967376\n", "bodies must be in [2, 10000000] (got 4294967376)");
+  expect_error("bodies = 2147483648\n", "bodies must be in");
+  expect_error("threads = 4294967297\n", "threads must be in [0, 1024]");
+  expect_error("[engine]\nsort_every_builds = 4294967296\n", "engine.sort_every_builds must be in");
   expect_error("[preparation]\nmethod = \"pour\"\n", "preparation.method");
   expect_error("[triaxial]\nstrain_rate = 0\n", "strain_rate");
   expect_error("[engine]\ntime_step_safety = 1.5\n", "time_step_safety");

@@ -75,6 +75,33 @@ TEST(Triaxial, RejectsBadOptions) {
   }
 }
 
+// The grain totals a test divides by (void ratio, inertial number) do not depend on the order the
+// engine's spatial re-sorts left the bodies in: a run resumed from a re-sorted checkpoint
+// recomputes them to the same bit (issue 17).
+TEST(Triaxial, GrainTotalsAreTheSameInAnyBodyOrder) {
+  const Simulation specimen = testing::compacted_specimen(60, 0.3, 7);
+  const Particles& original = specimen.particles();
+  Particles resorted = original;
+  const std::vector<int> new_to_old = resorted.sort_spatially(0.37 * 2.0 * original.sphere_radius[0]);
+  bool moved = false;
+  for (std::size_t k = 0; k < new_to_old.size(); ++k) moved |= new_to_old[k] != static_cast<int>(k);
+  ASSERT_TRUE(moved) << "the re-sort must change the body order for this test to mean anything";
+  const GrainTotals a = grain_totals(original), b = grain_totals(resorted);
+  EXPECT_EQ(a.solid_volume, b.solid_volume);
+  EXPECT_EQ(a.mass, b.mass);
+  EXPECT_EQ(a.mean_diameter, b.mean_diameter);
+  EXPECT_GT(a.solid_volume, 0.0);
+  // Grains whose volumes underflow (a diameter of 1e-200 m) are refused, not divided by.
+  Particles vanishing = original;
+  std::fill(vanishing.volume.begin(), vanishing.volume.end(), 0.0);
+  try {
+    grain_totals(vanishing);
+    FAIL() << "zero solid volume accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("solid volume"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace dem
 
@@ -143,6 +170,26 @@ TEST(Triaxial, InertialNumberUsesTheScaledDensity) {
   const auto [i100, p100] = first_row(100.0);
   ASSERT_GT(i1, 0.0);
   EXPECT_NEAR(i100 / i1 * std::sqrt(p100 / p1), 10.0, 1e-9);
+}
+
+// The strain limit holds whatever the output interval: an interval larger than the limit (1.0
+// against 0.02) ends the test at the limit, with one row there, instead of shearing on to the
+// next output row (eps_a = 1 crushed the specimen).
+TEST(Triaxial, StopsAtTheStrainLimitWhateverTheOutputInterval) {
+  const Simulation specimen = testing::compacted_specimen(40, 0.3, 5);
+  Simulation sim = testing::shearing_copy(specimen);
+  TriaxialOptions options = fast_options();
+  options.max_axial_strain = 0.02;
+  options.output_strain_interval = 1.0;
+  TriaxialTest test(sim, options);
+  int rows = 0;
+  const TriaxialSummary summary = test.run(nullptr, [&](const TriaxialProgress&) { ++rows; });
+  const double strain_per_step =
+      options.strain_rate * sim.time_step();  // 2 * (rate H / 2) dt / H
+  EXPECT_EQ(summary.stop, TriaxialStop::kMaxStrain);
+  EXPECT_NEAR(summary.axial_strain, 0.02, strain_per_step);
+  EXPECT_EQ(rows, 2);  // the first row at the start, the last at the limit
+  EXPECT_GT(summary.final_void_ratio, 0.0);
 }
 
 }  // namespace

@@ -33,10 +33,16 @@ struct PreparationConfig {
   CompactionOptions compaction;          ///< target_stress is taken from `pressure`
 };
 
+/// Upper bounds of the configuration's counts: far beyond any machine this code runs on (10^7
+/// clumps are a thousand paper-size specimens, several GB of state), they stop a mistyped number
+/// before it becomes an allocation failure or a wrapped integer.
+inline constexpr int kMaxBodies = 10'000'000;
+inline constexpr int kMaxThreads = 1024;
+
 struct RunConfig {
   std::uint64_t seed = 1;
-  int threads = 0;  ///< 0: all cores
-  int num_bodies = 1000;
+  int threads = 0;  ///< 0: all cores; at most kMaxThreads
+  int num_bodies = 1000;  ///< at most kMaxBodies
   GrainSpec grains;
   ContactParameters contact;  ///< `friction` applies in shearing
   SimulationOptions engine;   ///< local_damping applies in shearing

@@ -69,6 +69,19 @@ bool is_critical_state(const std::vector<double>& axial_strain, const std::vecto
                        const std::vector<double>& volumetric_strain,
                        const TriaxialOptions& options, std::size_t* window_start = nullptr);
 
+/// Totals of the grains that a test divides by: summed in the order of the bodies' stable ids,
+/// so that they are the same to the last bit whatever order the engine's spatial re-sorts left
+/// the bodies in (a resumed run recomputes them from the re-sorted checkpoint).
+struct GrainTotals {
+  double solid_volume = 0.0;   ///< [m^3]
+  double mass = 0.0;           ///< [kg], density scaling included
+  double mean_diameter = 0.0;  ///< of the bodies' first spheres [m]
+};
+
+/// The totals of `particles`; throws std::invalid_argument where one is not positive and finite
+/// (e.g. grains of diameter 1e-200 m, whose volumes underflow to 0).
+GrainTotals grain_totals(const Particles& particles);
+
 class TriaxialTest {
  public:
   /// `simulation` must hold a box of six walls around a prepared (compacted) specimen.
