@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <omp.h>
+#include <sstream>
 #include <stdexcept>
 
 namespace dem {
@@ -203,7 +204,48 @@ void ContactList::find_wall_candidates(const Particles& particles,
   }
 }
 
-void ContactList::restore(double skin, std::int64_t num_builds, int num_spheres) {
+std::string ContactList::check(int num_spheres, int num_walls) const {
+  std::ostringstream e;
+  const std::size_t np = pair_i.size(), nw = wall_sphere.size();
+  if (pair_j.size() != np || pair_tangential.size() != np || pair_normal.size() != np ||
+      pair_touching.size() != np)
+    e << "the pair arrays have different lengths (pair_i " << np << "); ";
+  if (wall_index.size() != nw || wall_tangential.size() != nw || wall_touching.size() != nw)
+    e << "the wall-candidate arrays have different lengths (wall_sphere " << nw << "); ";
+  if (!build_position.empty() && static_cast<int>(build_position.size()) != num_spheres)
+    e << "build_position has " << build_position.size() << " entries for " << num_spheres
+      << " spheres; ";
+  if (!build_wall_position.empty() && static_cast<int>(build_wall_position.size()) != num_walls)
+    e << "build_wall_position has " << build_wall_position.size() << " entries for " << num_walls
+      << " walls; ";
+  if (!e.str().empty()) return e.str();
+  for (std::size_t p = 0; p < np; ++p)
+    if (pair_i[p] < 0 || pair_j[p] <= pair_i[p] || pair_j[p] >= num_spheres ||
+        !pair_tangential[p].allFinite() || !pair_normal[p].allFinite()) {
+      e << "pair " << p << " (spheres " << pair_i[p] << ", " << pair_j[p]
+        << ") is out of range of the " << num_spheres << " spheres or its history is not finite; ";
+      break;
+    }
+  for (std::size_t k = 0; k < nw; ++k)
+    if (wall_sphere[k] < 0 || wall_sphere[k] >= num_spheres || wall_index[k] < 0 ||
+        wall_index[k] >= num_walls || !wall_tangential[k].allFinite()) {
+      e << "wall candidate " << k << " (sphere " << wall_sphere[k] << ", wall " << wall_index[k]
+        << ") is out of range or its history is not finite; ";
+      break;
+    }
+  for (const Eigen::Vector3d& x : build_position)
+    if (!x.allFinite()) {
+      e << "a build position is not finite; ";
+      break;
+    }
+  return e.str();
+}
+
+void ContactList::restore(double skin, std::int64_t num_builds, int num_spheres, int num_walls) {
+  const std::string error = check(num_spheres, num_walls);
+  if (!error.empty()) throw std::invalid_argument("contact list: " + error);
+  if (!(std::isfinite(skin) && skin >= 0.0) || num_builds < 0)
+    throw std::invalid_argument("contact list: skin or num_builds out of range");
   skin_ = skin;
   num_builds_ = num_builds;
   build_incidence(num_spheres);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 #include "dem/rigid_body.h"
@@ -134,6 +135,58 @@ ParticleRecord Particles::record(int b) const {
   const Eigen::Quaterniond& q = orientation[b];
   r.orientation = {q.w(), q.x(), q.y(), q.z()};
   return r;
+}
+
+std::string Particles::check() const {
+  std::ostringstream e;
+  const std::size_t n = id.size(), ns = sphere_radius.size();
+  auto sized = [&](std::size_t size, std::size_t expected, const char* name, const char* per) {
+    if (size != expected) e << name << " has " << size << " entries, not one per " << per << " (" << expected << "); ";
+  };
+  sized(position.size(), n, "position", "body");
+  sized(velocity.size(), n, "velocity", "body");
+  sized(orientation.size(), n, "orientation", "body");
+  sized(angular_momentum.size(), n, "angular_momentum", "body");
+  sized(angular_velocity.size(), n, "angular_velocity", "body");
+  sized(mass.size(), n, "mass", "body");
+  sized(inertia_axial.size(), n, "inertia_axial", "body");
+  sized(inertia_transverse.size(), n, "inertia_transverse", "body");
+  sized(volume.size(), n, "volume", "body");
+  sized(first_sphere.size(), n, "first_sphere", "body");
+  sized(num_body_spheres.size(), n, "num_body_spheres", "body");
+  sized(sphere_position.size(), ns, "sphere_position", "sphere");
+  sized(sphere_offset.size(), ns, "sphere_offset", "sphere");
+  sized(sphere_body.size(), ns, "sphere_body", "sphere");
+  if (!e.str().empty()) return e.str();  // the checks below index the arrays
+  auto finite3 = [](const Eigen::Vector3d& v) { return v.allFinite(); };
+  auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+  for (std::size_t b = 0; b < n; ++b) {
+    const int first = first_sphere[b], count = num_body_spheres[b];
+    if (count < 1 || count > 2 || first < 0 || static_cast<std::size_t>(first) + count > ns) {
+      e << "body " << id[b] << ": spheres [" << first << ", " << first + count
+        << ") outside the " << ns << " spheres; ";
+      return e.str();
+    }
+    for (int k = first; k < first + count; ++k)
+      if (sphere_body[k] != static_cast<int>(b))
+        e << "sphere " << k << " belongs to body " << sphere_body[k] << ", not " << b << "; ";
+    if (!finite3(position[b]) || !finite3(velocity[b]) || !finite3(angular_momentum[b]) ||
+        !finite3(angular_velocity[b]) || !orientation[b].coeffs().allFinite() ||
+        !(orientation[b].norm() > 0.5))
+      e << "body " << id[b] << ": a position, velocity, orientation or angular momentum is not finite; ";
+    if (!positive(mass[b]) || !positive(inertia_axial[b]) || !positive(inertia_transverse[b]) ||
+        !positive(volume[b]))
+      e << "body " << id[b] << ": mass " << mass[b] << ", inertia or volume " << volume[b]
+        << " is not positive and finite; ";
+    if (e.tellp() > 2000) return e.str() + "...";
+  }
+  for (std::size_t k = 0; k < ns; ++k)
+    if (!positive(sphere_radius[k]) || !std::isfinite(sphere_offset[k]) ||
+        !finite3(sphere_position[k])) {
+      e << "sphere " << k << ": radius " << sphere_radius[k] << " or its position is not finite and positive; ";
+      break;
+    }
+  return e.str();
 }
 
 }  // namespace dem

@@ -378,8 +378,8 @@ SimulationState RunFile::read_checkpoint(CheckpointExtras* extras) {
     c.wall_touching = h5::read_dataset<std::uint8_t>(g, "wall_touching", H5T_NATIVE_UINT8);
     c.build_position = read_vec3(g, "build_position");
     c.build_wall_position = h5::read_dataset<double>(g, "build_wall_position", H5T_NATIVE_DOUBLE);
-    c.restore(h5::read_double_attribute(g, "skin"), h5::read_int_attribute(g, "num_builds"),
-              p.num_spheres());
+    const std::string particles_error = p.check();
+    if (!particles_error.empty()) throw std::runtime_error("the checkpoint's bodies: " + particles_error);
 
     for (const WallRecord& r : h5::read_dataset<WallRecord>(g, "walls", h5::wall_record_type().get())) {
       Wall w;
@@ -401,6 +401,11 @@ SimulationState RunFile::read_checkpoint(CheckpointExtras* extras) {
     if (last_move.size() != s.walls.size() || integral.size() != s.walls.size())
       throw std::runtime_error("the checkpoint's servo state does not have one entry per wall");
     for (std::size_t w = 0; w < s.walls.size(); ++w) s.servo.push_back({last_move[w], integral[w]});
+    const std::string contacts_error = c.check(p.num_spheres(), static_cast<int>(s.walls.size()));
+    if (!contacts_error.empty())
+      throw std::runtime_error("the checkpoint's contact list: " + contacts_error);
+    c.restore(h5::read_double_attribute(g, "skin"), h5::read_int_attribute(g, "num_builds"),
+              p.num_spheres(), static_cast<int>(s.walls.size()));
 
     // Drop what was written after the checkpoint.
     if (impl_->writable) {

@@ -92,6 +92,10 @@ Simulation::Simulation(SimulationState state, ContactParameters contact,
   max_sphere_move_ = state.max_sphere_move;
   if (state.servo.size() != walls_.size())
     throw std::invalid_argument("Simulation: the saved state needs one servo state per wall");
+  const std::string contact_error =
+      contacts_.check(particles_.num_spheres(), static_cast<int>(walls_.size()));
+  if (!contact_error.empty())
+    throw std::invalid_argument("Simulation: the saved contact list: " + contact_error);
   servo_ = std::move(state.servo);
   const int slots = contacts_.num_slots();
   slots_.assign(slots, SlotResult{});
@@ -124,11 +128,13 @@ SimulationState Simulation::state() const {
 }
 
 void Simulation::initialise() {
-  std::string error = contact_.validate() + options_.validate();
+  std::string error = contact_.validate() + options_.validate() + particles_.check();
   if (particles_.num_bodies() == 0) error += "the scene has no bodies; ";
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const Wall& wall = walls_[w];
     if (wall.axis < 0 || wall.axis > 2) error += "wall " + std::to_string(w) + " axis not 0-2; ";
+    if (!std::isfinite(wall.position) || !std::isfinite(wall.velocity))
+      error += "wall " + std::to_string(w) + " position or velocity not finite; ";
     if (wall.mode == WallMode::kStress && !(wall.target_stress >= 0.0))
       error += "wall " + std::to_string(w) + " target_stress must be >= 0; ";
   }

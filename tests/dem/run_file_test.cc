@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -121,6 +122,41 @@ TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
     ASSERT_EQ(whole.particles().position[k], resumed_sim.particles().position[k]);
   std::remove(whole_path.c_str());
   std::remove(killed_path.c_str());
+}
+
+// A saved state that was edited or damaged (the arrays of a checkpoint are plain datasets) is
+// refused naming what is wrong, before any index in it is followed: a short mass array, a contact
+// index past the spheres, a wall index past the walls, a NaN position (issue 17).
+TEST(RunFile, ATamperedStateIsRefusedNamingTheArray) {
+  const Simulation specimen = testing::compacted_specimen(40, 0.3, 3);
+  const SimulationState good = specimen.state();
+  ASSERT_GT(good.contacts.num_pairs(), 0);
+  ASSERT_GT(good.contacts.num_wall_candidates(), 0);
+  auto expect_refused = [&](SimulationState state, const std::string& fragment) {
+    try {
+      Simulation sim(std::move(state), specimen.contact_parameters(), specimen.options());
+      FAIL() << "accepted a state with a bad " << fragment;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  SimulationState s = good;
+  s.particles.mass.pop_back();
+  expect_refused(s, "mass has");
+  s = good;
+  s.contacts.pair_j[0] = s.particles.num_spheres() + 5;
+  expect_refused(s, "pair 0");
+  s = good;
+  s.contacts.wall_index[0] = 6;
+  expect_refused(s, "wall candidate 0");
+  s = good;
+  s.particles.position[3].x() = std::nan("");
+  expect_refused(s, "not finite");
+  s = good;
+  s.particles.first_sphere[2] = s.particles.num_spheres();
+  expect_refused(s, "outside the");
+  // The untouched state is accepted.
+  EXPECT_NO_THROW(Simulation(SimulationState(good), specimen.contact_parameters(), specimen.options()));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "dem/records.h"
@@ -31,6 +32,13 @@ class Particles {
 
   /// Places every sphere from its body's position and orientation.
   void update_sphere_positions();
+
+  /// What is inconsistent in the arrays (empty if nothing): every body array one entry per body,
+  /// every sphere array one per sphere, each body's spheres inside the sphere arrays and pointing
+  /// back at it, positions and velocities finite, masses, inertias, volumes and radii positive and
+  /// finite. A state read back from a file (a checkpoint someone edited) is checked with it
+  /// before any index is followed.
+  std::string check() const;
 
   /// Orders bodies (and their spheres) by the cell of a grid of spacing `cell_size` they lie in,
   /// so that neighbours sit close in memory. Returns, for each old sphere index, its new index.
