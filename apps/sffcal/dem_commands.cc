@@ -152,6 +152,11 @@ int triaxial_command(const std::string& config_path, const std::string& specimen
 
 int resume_command(const std::string& run_path) {
   dem::RunFile file = dem::RunFile::open(run_path, true);
+  if (file.metadata().kind != "triaxial")
+    throw std::runtime_error(run_path + " is a " + file.metadata().kind +
+                             " file, not a triaxial run: --resume continues a killed triaxial "
+                             "test (shear a specimen with: sffcal triaxial -c CONFIG -s " +
+                             run_path + " -o RUN.h5)");
   const dem::RunConfig config = dem::parse_run_config(file.metadata().config_text, run_path + " (stored config)");
   use_threads(config);
   if (!file.has_checkpoint()) throw std::runtime_error(run_path + " has no checkpoint to resume from");

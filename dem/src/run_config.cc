@@ -261,7 +261,13 @@ RunConfig load_run_config(const std::string& path) {
   if (!in) throw std::invalid_argument("cannot read the config file " + path);
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse_run_config(buffer.str(), path);
+  RunConfig config = parse_run_config(buffer.str(), path);
+  // An empty file (or one of comments only) would run every default, 1000 bodies included: more
+  // likely a wrong or truncated file than a choice. The defaults are one command away.
+  if (toml::parse(buffer.str(), path).empty())
+    throw std::invalid_argument(path + ": the config sets no key (empty or comments only); "
+                                "`sffcal config -o FILE` writes every key with its default");
+  return config;
 }
 
 std::string default_run_config_text() { return kDefaultText; }

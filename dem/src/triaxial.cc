@@ -219,18 +219,26 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
   const std::int64_t start_step = sim_.step_count();
   if (resumed) {
     const CheckpointExtras& x = *resumed;
-    height0_ = x.at("height0");
-    width0_[0] = x.at("width0_x");
-    width0_[1] = x.at("width0_y");
-    volume0_ = x.at("volume0");
-    next_output_ = x.at("next_output");
-    next_snapshot_ = x.at("next_snapshot");
-    next_checkpoint_ = x.at("next_checkpoint");
-    worst_lateral_error_ = x.at("worst_lateral_error");
-    peak_eta_ = x.at("peak_eta");
-    peak_eta_strain_ = x.at("peak_eta_strain");
-    max_inertial_number_ = x.at("max_inertial_number");
-    initial_void_ratio_ = x.at("initial_void_ratio");
+    // A checkpoint of another kind (a specimen's, from preparation) lacks the test's state.
+    auto need = [&](const char* name) {
+      const auto it = x.find(name);
+      if (it == x.end())
+        throw std::invalid_argument(std::string("triaxial: the checkpoint has no '") + name +
+                                    "': it is not a triaxial test's (a specimen file?)");
+      return it->second;
+    };
+    height0_ = need("height0");
+    width0_[0] = need("width0_x");
+    width0_[1] = need("width0_y");
+    volume0_ = need("volume0");
+    next_output_ = need("next_output");
+    next_snapshot_ = need("next_snapshot");
+    next_checkpoint_ = need("next_checkpoint");
+    worst_lateral_error_ = need("worst_lateral_error");
+    peak_eta_ = need("peak_eta");
+    peak_eta_strain_ = need("peak_eta_strain");
+    max_inertial_number_ = need("max_inertial_number");
+    initial_void_ratio_ = need("initial_void_ratio");
     drive_platens();
     if (file) {
       history_strain_ = file->series("axial_strain");

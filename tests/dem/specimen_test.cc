@@ -210,5 +210,21 @@ TEST(RunConfig, ExampleConfigsLoad) {
   EXPECT_EQ(parse_run_config(default_run_config_text()).triaxial.strain_rate, 100.0);
 }
 
+// A config file that sets nothing (empty, or comments only) is refused: it would silently run
+// every default (1000 bodies), which a truncated or wrong file is more likely to mean.
+TEST(RunConfig, AnEmptyConfigFileIsRefused) {
+  const std::string path = ::testing::TempDir() + "/sffcal_empty_" + std::to_string(getpid()) + ".toml";
+  std::ofstream(path) << "# only a comment\n\n";
+  try {
+    load_run_config(path);
+    FAIL() << "an empty config was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("sets no key"), std::string::npos) << e.what();
+  }
+  std::ofstream(path) << "bodies = 50\n";
+  EXPECT_EQ(load_run_config(path).num_bodies, 50);
+  std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace dem
