@@ -215,6 +215,9 @@ int fe_check_command(const FeCheckOptions& options) {
     throw std::invalid_argument("--model-tol must be in [0, 1e-2] (0: no substep error control)");
   for (double p : options.pressures)
     if (!(p > 0.0)) throw std::invalid_argument("--pressures must be positive [Pa]");
+  if (!calibration::is_admissible_void_ratio(options.void_ratio))
+    throw std::invalid_argument("--void-ratio " + format_value(options.void_ratio) +
+                                " is not a void ratio the model can carry: it must be in (0, 2.97)");
 
   // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
   const calibration::Parameters<double> parameters =

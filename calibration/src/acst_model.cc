@@ -101,6 +101,8 @@ const char* to_string(UpdateStatus status) {
   return "unknown";
 }
 
+bool is_admissible_void_ratio(double e) { return e > 0.0 && e < detail::kElasticVoidLimit; }
+
 void validate_parameters(const Parameters<double>& par) {
   auto require = [](bool ok, const char* name, double value, const char* range) {
     if (!ok)

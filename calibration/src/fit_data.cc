@@ -170,7 +170,7 @@ void validate_test_data(const TestData& t) {
              " is not finite");
   }
   if (!(t.p0 > 0.0)) fail("initial p must be > 0 Pa");
-  if (!(t.e0 > 0.0 && t.e0 < 2.97)) fail("initial void ratio must lie in (0, 2.97)");
+  if (!is_admissible_void_ratio(t.e0)) fail("initial void ratio must lie in (0, 2.97)");
   if (!(t.friction >= 0.0)) fail("friction must be >= 0");
 }
 

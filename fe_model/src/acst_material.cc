@@ -68,7 +68,7 @@ AcstMaterial::AcstMaterial(const calibration::Parameters<double>& parameters,
                            const calibration::IntegrationOptions& options)
     : parameters_(parameters), initial_(initial_state), options_(options) {
   calibration::validate_parameters(parameters);  // throws, naming the parameter
-  if (!(initial_state.void_ratio > 0.0 && initial_state.void_ratio < 2.97))
+  if (!calibration::is_admissible_void_ratio(initial_state.void_ratio))
     throw std::invalid_argument("AcstMaterial: initial void ratio " +
                                 std::to_string(initial_state.void_ratio) +
                                 " is not physical: it must be in (0, 2.97)");

@@ -142,6 +142,10 @@ const char* to_string(UpdateStatus status);
 /// Throws std::runtime_error naming the first non-physical parameter.
 void validate_parameters(const Parameters<double>& par);
 
+/// Whether e is a void ratio the model can carry: in (0, 2.97), the limit of its elastic law
+/// (docs/model.md §3, Eq. 1).
+bool is_admissible_void_ratio(double e);
+
 /// Parameters from the calibration output (JSON, see docs/model.md); throws std::runtime_error
 /// naming the missing/invalid key.
 Parameters<double> read_parameters_json(const std::string& path);

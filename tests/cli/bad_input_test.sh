@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# Bad input as a careless or hostile user gives it to sffcal (issue 17): each is refused with a
+# non-zero exit and a message that names the cause, never a crash, a hang or a wrapped number,
+# and the files given are left as they were. Usage: bad_input_test.sh SFFCAL_BINARY [PYTHON].
+# PYTHON (with h5py) edits a checkpoint; without it those cases are skipped and say so.
+set -u
+sffcal=$1
+python=${2:-/usr/bin/python3}
+examples=$(cd "$(dirname "$0")/../../examples" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+cases=0
+
+# expect_failure DESCRIPTION NEEDLE COMMAND...: the command exits non-zero (not by a signal) within
+# 60 s and says NEEDLE.
+expect_failure() {
+  local what=$1 needle=$2
+  shift 2
+  cases=$((cases + 1))
+  local output status
+  output=$(timeout 60 "$@" 2>&1)
+  status=$?
+  if [ $status -eq 0 ]; then
+    echo "FAIL $what: exit status 0"; failures=$((failures + 1))
+  elif [ $status -ge 124 ]; then
+    echo "FAIL $what: killed or timed out (status $status): $output"; failures=$((failures + 1))
+  elif [[ $output != *"$needle"* ]]; then
+    echo "FAIL $what: message without '$needle': $output"; failures=$((failures + 1))
+  else
+    echo "ok   $what"
+  fi
+}
+
+# A small scene: 60 clumps, a short test with frequent checkpoints.
+"$sffcal" config -o base.toml > /dev/null || { echo "FAIL config"; exit 1; }
+sed -e 's/^bodies = .*/bodies = 60/' -e 's/^max_axial_strain = .*/max_axial_strain = 0.02/' \
+  -e 's/^checkpoint_strain_interval = .*/checkpoint_strain_interval = 0.005/' base.toml > small.toml
+
+# Configs.
+: > empty.toml
+expect_failure "an empty config is refused, not run with every default" "sets no key" \
+  "$sffcal" prepare -c empty.toml -o s.h5
+sed 's/^bodies = .*/bodies = 4294967376/' small.toml > wrap.toml
+expect_failure "bodies = 2^32 + 80 is refused, not wrapped to 80" "bodies must be in" \
+  "$sffcal" prepare -c wrap.toml -o s.h5
+sed 's/^threads = .*/threads = 4294967297/' small.toml > threads.toml
+expect_failure "threads = 2^32 + 1 is refused, not wrapped to 1" "threads must be in" \
+  "$sffcal" prepare -c threads.toml -o s.h5
+sed 's/^bodies = .*/bodies = 1e9/' small.toml > float.toml
+expect_failure "a float where an integer belongs" "bodies must be an integer" \
+  "$sffcal" prepare -c float.toml -o s.h5
+sed 's/^friction = .*/friction = nan/' small.toml > nan.toml
+expect_failure "a NaN friction" "friction" "$sffcal" prepare -c nan.toml -o s.h5
+printf '[grains\n' > syntax.toml
+expect_failure "a TOML syntax error names the line" "TOML syntax error at line 1" \
+  "$sffcal" prepare -c syntax.toml -o s.h5
+test ! -e s.h5 && echo "ok   no specimen was written by the refused configs" ||
+  { echo "FAIL s.h5 was written"; failures=$((failures + 1)); }
+
+# Run files.
+"$sffcal" prepare -c small.toml -o specimen.h5 > /dev/null || { echo "FAIL prepare"; exit 1; }
+expect_failure "--resume on a specimen file names what it is" "is a specimen file" \
+  "$sffcal" triaxial --resume -o specimen.h5
+"$sffcal" triaxial -c small.toml -s specimen.h5 -o run.h5 > /dev/null || { echo "FAIL triaxial"; exit 1; }
+echo "not HDF5" > text.h5
+expect_failure "a text file given as a run file" "cannot open the file" "$sffcal" info text.h5
+
+# A checkpoint edited by hand: short arrays, indices out of range, NaN.
+if "$python" -c 'import h5py, numpy' 2> /dev/null; then
+  tamper() {  # tamper FILE CASE
+    "$python" - "$1" "$2" << 'EOF'
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1], "r+") as f:
+    g = f["checkpoint"]
+    case = sys.argv[2]
+    if case == "short_mass":
+        m = g["mass"][:-3]
+        del g["mass"]
+        g["mass"] = m
+    elif case == "pair_index":
+        p = g["pair_j"][:]
+        p[0] = 10**6
+        g["pair_j"][...] = p
+    elif case == "wall_index":
+        w = g["wall_index"][:]
+        w[0] = 99
+        g["wall_index"][...] = w
+    elif case == "nan_position":
+        x = g["position"][:]
+        x[2, 0] = np.nan
+        g["position"][...] = x
+    elif case == "first_sphere":
+        s = g["first_sphere"][:]
+        s[1] = 10**6
+        g["first_sphere"][...] = s
+EOF
+  }
+  for c in short_mass:"mass has 57 entries" pair_index:"pair 0" wall_index:"wall candidate 0" \
+           nan_position:"not finite" first_sphere:"outside the"; do
+    name=${c%%:*}
+    cp run.h5 "$name.h5"
+    tamper "$name.h5" "$name"
+    expect_failure "a checkpoint with a bad ${name//_/ } is refused by name" "${c#*:}" \
+      "$sffcal" triaxial --resume -o "$name.h5"
+  done
+else
+  echo "skip the edited checkpoints: $python has no h5py"
+fi
+
+# The model and fe-check.
+expect_failure "fe-check with a void ratio the model cannot carry" "--void-ratio -1 is not" \
+  "$sffcal" fe-check --parameters "$examples/acst_toyoura.json" --void-ratio -1 --no-mesh -o fe
+printf '{"model": "acst", "parameters": {"G0": {"value": 1e400}}}' > overflow.json
+expect_failure "a parameter file with 1e400 names the file" "overflow.json" \
+  "$sffcal" fe-check --parameters overflow.json --no-mesh -o fe
+sed 's/"value": 125.0/"value": NaN/' "$examples/acst_toyoura.json" > nan.json
+expect_failure "a parameter file with NaN names the file" "nan.json" \
+  "$sffcal" fe-check --parameters nan.json --no-mesh -o fe
+
+echo "$cases bad inputs, $failures check(s) failed"
+exit $((failures > 0))
