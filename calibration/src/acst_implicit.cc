@@ -35,8 +35,6 @@ Tensor<double> to_tensor(const Voigt& v) {
   return t;
 }
 
-
-
 // The derivatives of docs/model.md §3, Eq. (1)-(10) with e held (it is kinematic), chained by hand
 // through the intermediate quantities; checked against Jets of plastic_residual in the tests.
 // With inputs, also the derivatives w.r.t. the known data of the step.
