@@ -225,6 +225,9 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       if (it == x.end())
         throw std::invalid_argument(std::string("triaxial: the checkpoint has no '") + name +
                                     "': it is not a triaxial test's (a specimen file?)");
+      if (!std::isfinite(it->second))
+        throw std::invalid_argument(std::string("triaxial: the checkpoint's '") + name +
+                                    "' is not finite");
       return it->second;
     };
     height0_ = need("height0");

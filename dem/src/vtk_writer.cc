@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <string>
 #include <stdexcept>
 
 namespace dem {
@@ -23,14 +24,31 @@ void write_collection(const std::string& path, const std::vector<std::pair<doubl
   out << "</Collection>\n</VTKFile>\n";
 }
 
+using BodyIndex = std::map<std::int64_t, const ParticleRecord*>;
+
+BodyIndex index_by_id(const Snapshot& s) {
+  BodyIndex by_id;
+  for (const ParticleRecord& p : s.particles) by_id[p.id] = &p;
+  return by_id;
+}
+
+// The body `id` that a sphere or a contact of the snapshot refers to; an edited or damaged file
+// can refer to one it does not hold.
+const ParticleRecord& body(const BodyIndex& by_id, std::int64_t id, const char* referrer) {
+  const auto it = by_id.find(id);
+  if (it == by_id.end())
+    throw std::runtime_error(std::string("snapshot: a ") + referrer + " refers to body " +
+                             std::to_string(id) + ", which the snapshot does not hold");
+  return *it->second;
+}
+
 }  // namespace
 
 void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
   {
     std::ofstream out = open_for_writing(stem + "_spheres.vtu");
     const std::size_t n = s.spheres.size();
-    std::map<std::int64_t, const ParticleRecord*> by_id;
-    for (const ParticleRecord& p : s.particles) by_id[p.id] = &p;
+    const BodyIndex by_id = index_by_id(s);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
         << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
@@ -48,7 +66,7 @@ void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
     for (std::int64_t b : s.sphere_body) out << b << '\n';
     out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (std::int64_t b : s.sphere_body) {
-      const auto& v = by_id.at(b)->velocity;
+      const auto& v = body(by_id, b, "sphere").velocity;
       out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
     }
     out << "</DataArray>\n</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
@@ -58,16 +76,15 @@ void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
     std::vector<const ContactRecord*> contacts;
     for (const ContactRecord& c : s.contacts)
       if (c.wall < 0) contacts.push_back(&c);
-    std::map<std::int64_t, const ParticleRecord*> by_id;
-    for (const ParticleRecord& p : s.particles) by_id[p.id] = &p;
+    const BodyIndex by_id = index_by_id(s);
     std::ofstream out = open_for_writing(stem + "_contacts.vtu");
     const std::size_t n = contacts.size();
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << 2 * n << "\" NumberOfCells=\"" << n << "\">\n"
         << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (const ContactRecord* c : contacts) {
-      const auto& a = by_id.at(c->body_a)->position;
-      const auto& b = by_id.at(c->body_b)->position;
+      const auto& a = body(by_id, c->body_a, "contact").position;
+      const auto& b = body(by_id, c->body_b, "contact").position;
       out << a[0] << ' ' << a[1] << ' ' << a[2] << '\n' << b[0] << ' ' << b[1] << ' ' << b[2] << '\n';
     }
     out << "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";

@@ -67,7 +67,7 @@ expect_failure "--resume on a specimen file names what it is" "is a specimen fil
 echo "not HDF5" > text.h5
 expect_failure "a text file given as a run file" "cannot open the file" "$sffcal" info text.h5
 
-# A checkpoint edited by hand: short arrays, indices out of range, NaN.
+# A run file edited by hand: short arrays, indices out of range, NaN.
 if "$python" -c 'import h5py, numpy' 2> /dev/null; then
   tamper() {  # tamper FILE CASE
     "$python" - "$1" "$2" << 'EOF'
@@ -97,16 +97,27 @@ with h5py.File(sys.argv[1], "r+") as f:
         s = g["first_sphere"][:]
         s[1] = 10**6
         g["first_sphere"][...] = s
+    elif case == "nan_extra":
+        g["extras"].attrs["height0"] = np.nan
+    elif case == "snapshot_body":
+        c = f["snapshots/000000/contacts"][:]
+        c["body_a"][0] = 10**9
+        f["snapshots/000000/contacts"][...] = c
 EOF
   }
   for c in short_mass:"mass has 57 entries" pair_index:"pair 0" wall_index:"wall candidate 0" \
-           nan_position:"not finite" first_sphere:"outside the"; do
+           nan_position:"not finite" first_sphere:"outside the" \
+           nan_extra:"'height0' is not finite"; do
     name=${c%%:*}
     cp run.h5 "$name.h5"
     tamper "$name.h5" "$name"
     expect_failure "a checkpoint with a bad ${name//_/ } is refused by name" "${c#*:}" \
       "$sffcal" triaxial --resume -o "$name.h5"
   done
+  cp run.h5 snapshot_body.h5
+  tamper snapshot_body.h5 snapshot_body
+  expect_failure "vtk of a snapshot whose contact names a missing body" "refers to body 1000000000" \
+    "$sffcal" vtk snapshot_body.h5 -o vtk
 else
   echo "skip the edited checkpoints: $python has no h5py"
 fi
