@@ -241,11 +241,7 @@ std::string ContactList::check(int num_spheres, int num_walls) const {
   return e.str();
 }
 
-void ContactList::restore(double skin, std::int64_t num_builds, int num_spheres, int num_walls) {
-  const std::string error = check(num_spheres, num_walls);
-  if (!error.empty()) throw std::invalid_argument("contact list: " + error);
-  if (!(std::isfinite(skin) && skin >= 0.0) || num_builds < 0)
-    throw std::invalid_argument("contact list: skin or num_builds out of range");
+void ContactList::restore(double skin, std::int64_t num_builds, int num_spheres) {
   skin_ = skin;
   num_builds_ = num_builds;
   build_incidence(num_spheres);

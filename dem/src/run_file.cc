@@ -1,5 +1,7 @@
 #include "dem/run_file.h"
 
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -404,8 +406,11 @@ SimulationState RunFile::read_checkpoint(CheckpointExtras* extras) {
     const std::string contacts_error = c.check(p.num_spheres(), static_cast<int>(s.walls.size()));
     if (!contacts_error.empty())
       throw std::runtime_error("the checkpoint's contact list: " + contacts_error);
-    c.restore(h5::read_double_attribute(g, "skin"), h5::read_int_attribute(g, "num_builds"),
-              p.num_spheres(), static_cast<int>(s.walls.size()));
+    const double skin = h5::read_double_attribute(g, "skin");
+    const std::int64_t num_builds = h5::read_int_attribute(g, "num_builds");
+    if (!(std::isfinite(skin) && skin >= 0.0) || num_builds < 0)
+      throw std::runtime_error("the checkpoint's skin or num_builds is out of range");
+    c.restore(skin, num_builds, p.num_spheres());
 
     // Drop what was written after the checkpoint.
     if (impl_->writable) {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -19,6 +20,39 @@ namespace {
 
 std::string temp_path(const std::string& name) {
   return ::testing::TempDir() + "/sffcal_" + std::to_string(getpid()) + "_" + name;
+}
+
+// Resumes the killed run in `path` from its checkpoint with the engine settings of `whole`;
+// `builds` receives the list builds the checkpoint had seen.
+Simulation resume(const std::string& path, const Simulation& whole, const TriaxialOptions& options,
+                  std::int64_t* builds = nullptr) {
+  RunFile file = RunFile::open(path, true);
+  CheckpointExtras extras;
+  SimulationState state = file.read_checkpoint(&extras);
+  if (builds) *builds = state.contacts.num_builds();
+  Simulation sim(std::move(state), whole.contact_parameters(), whole.options());
+  TriaxialTest test(sim, options);
+  test.run(&file, nullptr, &extras);
+  return sim;
+}
+
+// The resumed run equals the uninterrupted one bit for bit: every series but the wall time,
+// the snapshots, the final positions. Removes both files.
+void expect_same_run(const std::string& whole_path, const Simulation& whole,
+                     const std::string& resumed_path, const Simulation& resumed) {
+  {
+    const RunFile a = RunFile::open(whole_path), b = RunFile::open(resumed_path);
+    for (const std::string& name : triaxial_series_names()) {
+      if (name == "time") continue;
+      EXPECT_EQ(a.series(name), b.series(name)) << name;
+    }
+    EXPECT_EQ(a.num_snapshots(), b.num_snapshots());
+    ASSERT_EQ(whole.particles().num_bodies(), resumed.particles().num_bodies());
+    for (int k = 0; k < whole.particles().num_bodies(); ++k)
+      ASSERT_EQ(whole.particles().position[k], resumed.particles().position[k]);
+  }
+  std::remove(whole_path.c_str());
+  std::remove(resumed_path.c_str());
 }
 
 TEST(RunFile, RoundTripsSeriesSnapshotsAndMetadata) {
@@ -106,26 +140,8 @@ TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
     }),
                  Killed);
   }
-  Simulation resumed_sim = [&] {
-    RunFile file = RunFile::open(killed_path, true);
-    CheckpointExtras extras;
-    SimulationState state = file.read_checkpoint(&extras);
-    Simulation sim(std::move(state), whole.contact_parameters(), whole.options());
-    TriaxialTest test(sim, options);
-    test.run(&file, nullptr, &extras);
-    return sim;
-  }();
-
-  const RunFile a = RunFile::open(whole_path), b = RunFile::open(killed_path);
-  for (const std::string& name : triaxial_series_names()) {
-    if (name == "time") continue;
-    EXPECT_EQ(a.series(name), b.series(name)) << name;
-  }
-  EXPECT_EQ(a.num_snapshots(), b.num_snapshots());
-  for (int k = 0; k < whole.particles().num_bodies(); ++k)
-    ASSERT_EQ(whole.particles().position[k], resumed_sim.particles().position[k]);
-  std::remove(whole_path.c_str());
-  std::remove(killed_path.c_str());
+  const Simulation resumed = resume(killed_path, whole, options);
+  expect_same_run(whole_path, whole, killed_path, resumed);
 }
 
 // A saved state that was edited or damaged (the arrays of a checkpoint are plain datasets) is
@@ -208,29 +224,10 @@ TEST(RunFile, ResumeAfterSigkillAndReSortsGivesTheUninterruptedRun) {
   ASSERT_EQ(waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "status " << status;
 
-  Simulation resumed_sim = [&] {
-    RunFile file = RunFile::open(killed_path, true);
-    CheckpointExtras extras;
-    SimulationState state = file.read_checkpoint(&extras);
-    EXPECT_GE(state.contacts.num_builds(), 3) << "re-sorts before the checkpoint";
-    SimulationOptions engine = whole.options();
-    Simulation sim(std::move(state), whole.contact_parameters(), engine);
-    TriaxialTest test(sim, options);
-    test.run(&file, nullptr, &extras);
-    return sim;
-  }();
-
-  const RunFile a = RunFile::open(whole_path), b = RunFile::open(killed_path);
-  for (const std::string& name : triaxial_series_names()) {
-    if (name == "time") continue;
-    EXPECT_EQ(a.series(name), b.series(name)) << name;
-  }
-  EXPECT_EQ(a.num_snapshots(), b.num_snapshots());
-  ASSERT_EQ(whole.particles().num_bodies(), resumed_sim.particles().num_bodies());
-  for (int k = 0; k < whole.particles().num_bodies(); ++k)
-    ASSERT_EQ(whole.particles().position[k], resumed_sim.particles().position[k]);
-  std::remove(whole_path.c_str());
-  std::remove(killed_path.c_str());
+  std::int64_t builds = 0;
+  const Simulation resumed = resume(killed_path, whole, options, &builds);
+  EXPECT_GE(builds, 3) << "re-sorts before the checkpoint";
+  expect_same_run(whole_path, whole, killed_path, resumed);
 }
 
 }  // namespace

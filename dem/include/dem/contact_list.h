@@ -53,10 +53,9 @@ class ContactList {
   std::int64_t num_builds() const { return num_builds_; }
 
   /// Restores a list read back from a checkpoint: the topology and history arrays must already
-  /// be filled; this checks them (throws std::invalid_argument naming what is wrong: an edited or
-  /// damaged file must not send an index out of range), sets the counters and derives the
-  /// incidence lists.
-  void restore(double skin, std::int64_t num_builds, int num_spheres, int num_walls);
+  /// be filled and pass check() (an edited or damaged file must not send an index out of range);
+  /// this sets the counters and derives the incidence lists.
+  void restore(double skin, std::int64_t num_builds, int num_spheres);
 
   /// What is inconsistent (empty if nothing): history arrays parallel to their lists, sphere and
   /// wall indices in range, pairs i < j, histories and build positions finite.
