@@ -1,5 +1,6 @@
 // The parameter file: round trip and errors that name the key.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -14,8 +15,10 @@ namespace {
 
 using testing::toyoura;
 
+// One name per process: ctest runs the tests of this file in parallel processes, which would
+// otherwise write and read the same file at once.
 std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "calibration_" + name + ".json";
+  return ::testing::TempDir() + "calibration_" + std::to_string(::getpid()) + "_" + name + ".json";
 }
 
 void write_text(const std::string& path, const std::string& text) {
