@@ -21,7 +21,7 @@
 
 #include "dem/compaction.h"
 #include "dem/packing.h"
-#include "dem/run_file.h"
+#include "dem/run_file_io.h"
 #include "list_argument.h"
 
 namespace {
@@ -38,7 +38,7 @@ dem::Simulation jammed_packing(int bodies, bool clumps, std::uint64_t seed,
     dem::SimulationOptions options;
     options.local_damping = 0.7;
     std::fprintf(stderr, "  packing from %s\n", cache.c_str());
-    return dem::Simulation(file.read_checkpoint(nullptr), law, options);
+    return dem::Simulation(dem::read_checkpoint(file, nullptr), law, options);
   }
   dem::GrainSpec grains;
   grains.centre_distance_ratio = clumps ? 0.5 : 0.0;
@@ -60,7 +60,7 @@ dem::Simulation jammed_packing(int bodies, bool clumps, std::uint64_t seed,
                result.summary().c_str());
   std::filesystem::create_directories(cache_folder);
   dem::RunFile file = dem::RunFile::create(cache, {"specimen", "dem_throughput", seed, ""}, {});
-  file.write_checkpoint(sim.state(), {});
+  dem::write_checkpoint(file, sim.state(), {});
   return sim;
 }
 

@@ -10,7 +10,7 @@
 #include <functional>
 #include <string>
 
-#include "dem/run_file.h"
+#include "runfile/run_file.h"
 #include "sff/analysis.h"
 #include "sff/run_snapshot.h"
 
@@ -35,12 +35,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const dem::RunFile file = dem::RunFile::open(argv[1]);
+    const runfile::RunFile file = runfile::RunFile::open(argv[1]);
     if (file.num_snapshots() == 0) throw std::runtime_error(std::string(argv[1]) + " has no snapshot");
     const int index = argc > 2 ? std::atoi(argv[2]) : file.num_snapshots() - 1;
     const int repeats = argc > 3 ? std::atoi(argv[3]) : 5;
-    const dem::Snapshot snapshot = file.read_snapshot(index);
-    const sff::SnapshotInput input = sff::snapshot_input(snapshot, sff::stored_config(file));
+    const runfile::Snapshot snapshot = file.read_snapshot(index);
+    const sff::SnapshotInput input = sff::snapshot_input(snapshot, file.metadata().physics);
     std::printf("%s snapshot %d: %zu bodies, %zu contacts (%zu body-body), axial strain %.3f\n",
                 argv[1], index, snapshot.particles.size(), snapshot.contacts.size(),
                 sff::count_body_contacts(input.contacts), snapshot.axial_strain);

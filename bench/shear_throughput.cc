@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/run_file.h"
+#include "dem/run_file_io.h"
 #include "list_argument.h"
 #include "dem/triaxial.h"
 
@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& path : specimens) {
     dem::CheckpointExtras extras;
-    const dem::SimulationState state = dem::RunFile::open(path).read_checkpoint(&extras);
+    dem::RunFile specimen = dem::RunFile::open(path);
+    const dem::SimulationState state = dem::read_checkpoint(specimen, &extras);
     for (int threads : thread_counts) {
       omp_set_num_threads(threads);
       dem::ContactParameters law;  // the shearing law: friction tan 30, frictionless walls

@@ -12,6 +12,7 @@ strain). Needs python3-h5py and python3-matplotlib (Debian).
 import argparse
 import os
 import sys
+import tomllib
 
 import h5py
 import matplotlib
@@ -29,18 +30,14 @@ def table(f, name):
 
 
 def friction(f):
-    """Grain friction from the stored config (tan 30 deg when absent)."""
+    """The grains' friction while shearing: /physics of a schema-2 run file; a schema-1 file's
+    stored config with that schema's default, tan 30 deg (as runfile/src/stored_physics.cc)."""
+    if "physics" in f:
+        return float(f["physics"].attrs["friction"])
     text = f.attrs.get("config", "")
     if isinstance(text, bytes):
         text = text.decode()
-    section = None
-    for line in text.splitlines():
-        line = line.split("#")[0].strip()
-        if line.startswith("["):
-            section = line.strip("[]")
-        elif section == "contact" and line.startswith("friction") and "=" in line:
-            return float(line.split("=")[1])
-    return np.tan(np.radians(30.0))
+    return float(tomllib.loads(text).get("contact", {}).get("friction", 0.5773502691896257))
 
 
 def plot_eta(run, sff, mu, path):

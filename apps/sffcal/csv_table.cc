@@ -3,7 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "dem/run_file.h"
+#include "runfile/run_file.h"
 
 namespace sffcal {
 
@@ -21,7 +21,7 @@ void write_csv(const std::string& path, const std::vector<std::string>& columns,
   if (!out) throw std::runtime_error("error while writing " + path);
 }
 
-void write_series_csv(const dem::RunFile& file, const std::string& path) {
+void write_series_csv(const runfile::RunFile& file, const std::string& path) {
   const std::vector<std::string>& names = file.series_names();
   std::vector<std::vector<double>> columns;
   for (const std::string& name : names) columns.push_back(file.series(name));

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace dem {
+namespace runfile {
 class RunFile;
 }
 
@@ -16,6 +16,6 @@ void write_csv(const std::string& path, const std::vector<std::string>& columns,
                const std::vector<std::vector<double>>& rows);
 
 /// Writes a run file's /series (every column) as `path`.
-void write_series_csv(const dem::RunFile& file, const std::string& path);
+void write_series_csv(const runfile::RunFile& file, const std::string& path);
 
 }  // namespace sffcal

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "dem/run_config.h"
-#include "dem/run_file.h"
+#include "dem/run_file_io.h"
 #include "dem/specimen.h"
 #include "dem/triaxial.h"
 #include "dem/vtk_writer.h"
@@ -20,8 +20,8 @@
 namespace sffcal {
 namespace {
 
-dem::RunMetadata metadata(const char* kind, const dem::RunConfig& config) {
-  return {kind, config.text, config.seed, SFFCAL_VERSION};
+runfile::RunMetadata metadata(const char* kind, const dem::RunConfig& config) {
+  return dem::run_metadata(kind, config, SFFCAL_VERSION);
 }
 
 void use_threads(const dem::RunConfig& config) {
@@ -36,8 +36,8 @@ std::string format_seconds(double s) {
   return text;
 }
 
-dem::TriaxialSummary shear(dem::Simulation& sim, const dem::RunConfig& config, dem::RunFile& file,
-                           const dem::CheckpointExtras* resumed) {
+dem::TriaxialSummary shear(dem::Simulation& sim, const dem::RunConfig& config, runfile::RunFile& file,
+                           const runfile::CheckpointExtras* resumed) {
   dem::TriaxialTest test(sim, config.triaxial);
   ProgressLine line;
   const dem::TriaxialSummary summary = test.run(&file, [&](const dem::TriaxialProgress& p) {
@@ -48,8 +48,6 @@ dem::TriaxialSummary shear(dem::Simulation& sim, const dem::RunConfig& config, d
     line.update(p.axial_strain / p.target_strain, text);
   }, resumed);
   line.finish();
-  file.write_note("summary", summary.describe());
-  file.flush();
   const std::string csv = file.path() + ".series.csv";
   write_series_csv(file, csv);
   std::printf("%s\nrun file: %s (series also in %s)\n", summary.describe().c_str(),
@@ -84,11 +82,11 @@ void prepare_and_save(const dem::RunConfig& config, const std::string& out_path)
         line.update(-1.0, text);
       });
   line.finish();
-  dem::RunFile file = dem::RunFile::create(out_path, metadata("specimen", config), {});
+  runfile::RunFile file = runfile::RunFile::create(out_path, metadata("specimen", config), {});
   file.write_snapshot(dem::take_snapshot(sim, 0.0));
-  file.write_checkpoint(sim.state(), {{"pressure", config.preparation.pressure},
-                                      {"void_ratio", report.void_ratio},
-                                      {"compaction_friction", report.compaction_friction}});
+  dem::write_checkpoint(file, sim.state(), {{"pressure", config.preparation.pressure},
+                                            {"void_ratio", report.void_ratio},
+                                            {"compaction_friction", report.compaction_friction}});
   file.write_note("preparation", report.describe());
   std::printf("%s\nspecimen file: %s\n", report.describe().c_str(), out_path.c_str());
 }
@@ -117,25 +115,17 @@ int triaxial_command(const std::string& config_path, const std::string& specimen
                      const std::string& out_path) {
   const dem::RunConfig config = dem::load_run_config(config_path);
   use_threads(config);
-  dem::CheckpointExtras specimen_extras;
+  runfile::CheckpointExtras specimen_extras;
   dem::SimulationState state = [&] {
-    dem::RunFile specimen = dem::RunFile::open(specimen_path);
-    return specimen.read_checkpoint(&specimen_extras);
+    runfile::RunFile specimen = runfile::RunFile::open(specimen_path);
+    return dem::read_checkpoint(specimen, &specimen_extras);
   }();
   const double sigma3 = config.triaxial.confining_stress;
   const double p0 = specimen_extras.count("pressure") ? specimen_extras.at("pressure") : sigma3;
   if (std::abs(p0 - sigma3) > config.preparation.compaction.stress_tolerance * sigma3) {
     // A specimen prepared at another pressure is first brought isotropically to sigma_3.
     std::printf("re-consolidating the specimen from %.4g to %.4g kPa\n", p0 / 1e3, sigma3 / 1e3);
-    dem::SimulationOptions options = config.engine;
-    options.local_damping = config.preparation.local_damping;
-    options.servo.max_speed = config.preparation.servo_max_speed;
-    dem::Simulation sim(std::move(state), config.contact, options);
-    dem::CompactionOptions compaction = config.preparation.compaction;
-    compaction.target_stress = sigma3;
-    const dem::CompactionResult result = dem::compact_isotropically(sim, compaction);
-    if (!result.converged) throw std::runtime_error("re-consolidation: " + result.summary());
-    state = sim.state();
+    state = dem::reconsolidate(std::move(state), config, sigma3);
   }
   dem::Simulation sim(std::move(state), config.contact, config.engine);
   std::printf("triaxial compression: sigma_3 %.4g kPa, strain rate %.3g /s, %d bodies, time step "
@@ -143,7 +133,7 @@ int triaxial_command(const std::string& config_path, const std::string& specimen
               sigma3 / 1e3, config.triaxial.strain_rate, sim.particles().num_bodies(),
               sim.time_step(), sim.critical_time_step(), config.engine.density_scaling,
               omp_get_max_threads(), sim.features().describe().c_str());
-  dem::RunFile file = dem::RunFile::create(out_path, metadata("triaxial", config),
+  runfile::RunFile file = runfile::RunFile::create(out_path, metadata("triaxial", config),
                                            dem::triaxial_series_names());
   file.write_note("specimen", specimen_path);
   shear(sim, config, file, nullptr);
@@ -151,7 +141,7 @@ int triaxial_command(const std::string& config_path, const std::string& specimen
 }
 
 int resume_command(const std::string& run_path) {
-  dem::RunFile file = dem::RunFile::open(run_path, true);
+  runfile::RunFile file = runfile::RunFile::open(run_path, true);
   if (file.metadata().kind != "triaxial")
     throw std::runtime_error(run_path + " is a " + file.metadata().kind +
                              " file, not a triaxial run: --resume continues a killed triaxial "
@@ -160,8 +150,8 @@ int resume_command(const std::string& run_path) {
   const dem::RunConfig config = dem::parse_run_config(file.metadata().config_text, run_path + " (stored config)");
   use_threads(config);
   if (!file.has_checkpoint()) throw std::runtime_error(run_path + " has no checkpoint to resume from");
-  dem::CheckpointExtras extras;
-  dem::SimulationState state = file.read_checkpoint(&extras);
+  runfile::CheckpointExtras extras;
+  dem::SimulationState state = dem::read_checkpoint(file, &extras);
   dem::Simulation sim(std::move(state), config.contact, config.engine);
   std::printf("resuming %s at step %lld\n", run_path.c_str(), static_cast<long long>(sim.step_count()));
   shear(sim, config, file, &extras);
@@ -175,7 +165,7 @@ int dem_command(const std::string& config_path, const std::string& out_path) {
 }
 
 int vtk_command(const std::string& run_path, const std::string& folder) {
-  const dem::RunFile file = dem::RunFile::open(run_path);
+  const runfile::RunFile file = runfile::RunFile::open(run_path);
   const int n = dem::export_run_to_vtk(file, folder);
   std::printf("wrote %d snapshots to %s (open spheres.pvd in ParaView; Glyph by 'radius')\n", n,
               folder.c_str());
@@ -183,17 +173,24 @@ int vtk_command(const std::string& run_path, const std::string& folder) {
 }
 
 int info_command(const std::string& run_path) {
-  const dem::RunFile file = dem::RunFile::open(run_path);
-  const dem::RunMetadata m = file.metadata();
-  std::printf("%s: %s run, program version %s, seed %llu\n", run_path.c_str(), m.kind.c_str(),
-              m.program_version.c_str(), static_cast<unsigned long long>(m.seed));
+  const runfile::RunFile file = runfile::RunFile::open(run_path);
+  const runfile::RunMetadata m = file.metadata();
+  std::printf("%s: %s run, program version %s, seed %llu, schema %lld\n", run_path.c_str(),
+              m.kind.c_str(), m.program_version.c_str(), static_cast<unsigned long long>(m.seed),
+              static_cast<long long>(m.schema_version));
+  std::printf("physics: E %.4g Pa, k_t/k_n %.3g, friction %.6g (walls %.3g), grain density %.5g "
+              "kg/m^3, density scaling %.3g%s\n",
+              m.physics.youngs_modulus, m.physics.stiffness_ratio, m.physics.friction,
+              m.physics.wall_friction, m.physics.grain_density, m.physics.density_scaling,
+              m.schema_version < 2 ? " (from the stored config)" : "");
   std::printf("series: %zu rows of %zu columns; snapshots: %d; checkpoint: %s\n",
               file.series_length(), file.series_names().size(), file.num_snapshots(),
               file.has_checkpoint() ? "yes" : "no");
-  for (const char* note : {"preparation", "specimen", "summary"}) {
+  for (const char* note : {"preparation", "specimen", "summary"}) {  // schema 1 kept a summary note
     const std::string text = file.read_note(note);
     if (!text.empty()) std::printf("%s: %s\n", note, text.c_str());
   }
+  if (file.has_summary()) std::printf("summary: %s\n", file.read_summary().describe().c_str());
   return 0;
 }
 

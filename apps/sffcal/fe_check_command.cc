@@ -2,8 +2,6 @@
 // unit: the FE runs go through fe_model/acst_check.h.
 #include "fe_check_command.h"
 
-#include <hdf5.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +17,7 @@
 
 #include "calibration/acst_model.h"
 #include "fe_model/acst_check.h"
+#include "runfile/dem_test.h"
 
 namespace sffcal {
 namespace {
@@ -27,56 +26,6 @@ namespace fs = std::filesystem;
 
 constexpr double kVerificationTolerance = 1e-8;
 const double kSqrtTwoThirds = std::sqrt(2.0 / 3.0);
-
-// A read-only HDF5 file with the two reads fe-check needs.
-class H5Reader {
- public:
-  explicit H5Reader(const std::string& path) : path_(path) {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // missing objects are checked, not printed
-    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (file_ < 0)
-      throw std::runtime_error("cannot open DEM run file '" + path +
-                               "' (not HDF5, or still open for writing by a running simulation)");
-  }
-  ~H5Reader() { H5Fclose(file_); }
-  H5Reader(const H5Reader&) = delete;
-  H5Reader& operator=(const H5Reader&) = delete;
-
-  // True if every component of an absolute path such as /analysis/sff/a_c exists.
-  bool has(const std::string& path) const {
-    std::string partial;
-    std::istringstream parts(path);
-    std::string part;
-    while (std::getline(parts, part, '/')) {
-      if (part.empty()) continue;
-      partial += "/" + part;
-      if (H5Lexists(file_, partial.c_str(), H5P_DEFAULT) <= 0) return false;
-    }
-    return !partial.empty();
-  }
-
-  // A 1-D dataset as doubles.
-  std::vector<double> read(const std::string& path) const {
-    if (!has(path)) throw std::runtime_error(path_ + ": no dataset " + path);
-    const hid_t dataset = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
-    const hid_t space = H5Dget_space(dataset);
-    hsize_t size = 0;
-    const bool one_d = H5Sget_simple_extent_ndims(space) == 1 &&
-                       H5Sget_simple_extent_dims(space, &size, nullptr) == 1;
-    std::vector<double> values(one_d ? size : 0);
-    const herr_t status = one_d && size > 0 ? H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
-                                                      H5P_DEFAULT, values.data())
-                                            : 0;
-    H5Sclose(space);
-    H5Dclose(dataset);
-    if (!one_d || status < 0) throw std::runtime_error(path_ + ": cannot read " + path);
-    return values;
-  }
-
- private:
-  std::string path_;
-  hid_t file_ = -1;
-};
 
 struct DemRun {
   std::string path;
@@ -89,56 +38,43 @@ struct DemRun {
 };
 
 DemRun read_dem_run(const std::string& path, double a_cs) {
+  const runfile::DemTest test = runfile::read_dem_test(path);
+  const runfile::DemTestSeries& s = test.series;
+  if (s.axial_strain.empty()) throw std::runtime_error(path + ": /series is empty");
   DemRun run;
   run.path = path;
-  run.name = fs::path(path).stem().string();
-  const H5Reader file(path);
-  const std::vector<double> axial = file.read("/series/axial_strain");
-  const std::vector<double> volumetric = file.read("/series/volumetric_strain");
-  const std::vector<double> p = file.read("/series/p");
-  const std::vector<double> q = file.read("/series/q");
-  const std::vector<double> e = file.read("/series/void_ratio");
-  const std::vector<double> sigma_3 = file.read("/series/sigma_3");
-  const std::size_t n = axial.size();
-  if (n == 0 || volumetric.size() != n || p.size() != n || q.size() != n || e.size() != n ||
-      sigma_3.size() != n)
-    throw std::runtime_error(path + ": /series is empty or its datasets differ in length");
-  run.confining_pressure = sigma_3.front();
-  run.void_ratio = e.front();
+  run.name = test.name;
+  run.confining_pressure = s.sigma_3.front();
+  run.void_ratio = s.void_ratio.front();
   run.curve.label = "dem";
   run.curve.completed = true;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < s.axial_strain.size(); ++i) {
     fe_model::CurvePoint point;
-    point.axial_strain = axial[i];
-    point.volumetric_strain = volumetric[i];
-    point.p = p[i];
-    point.q = q[i];
-    point.void_ratio = e[i];
+    point.axial_strain = s.axial_strain[i];
+    point.volumetric_strain = s.volumetric_strain[i];
+    point.p = s.p[i];
+    point.q = s.q[i];
+    point.void_ratio = s.void_ratio[i];
     point.fabric_invariant = std::numeric_limits<double>::quiet_NaN();
     run.curve.points.push_back(point);
   }
-  if (file.has("/analysis/sff/a_c") && file.has("/analysis/sff/axial_strain")) {
-    const std::vector<double> sff_axial = file.read("/analysis/sff/axial_strain");
-    const std::vector<double> a_c = file.read("/analysis/sff/a_c");
-    std::vector<double> sff_p, sff_q, sff_e;
-    if (file.has("/analysis/sff/p")) sff_p = file.read("/analysis/sff/p");
-    if (file.has("/analysis/sff/q")) sff_q = file.read("/analysis/sff/q");
-    if (file.has("/analysis/sff/void_ratio")) sff_e = file.read("/analysis/sff/void_ratio");
+  if (test.analysed && !test.sff.axial_strain.empty()) {
+    const runfile::DemTestSff& f = test.sff;
     run.fabric.label = "dem_fabric";
     run.fabric.completed = true;
     std::size_t first = 0;
-    for (std::size_t i = 0; i < std::min(sff_axial.size(), a_c.size()); ++i) {
+    for (std::size_t i = 0; i < f.axial_strain.size(); ++i) {
       fe_model::CurvePoint point;
-      point.axial_strain = sff_axial[i];
-      point.p = i < sff_p.size() ? sff_p[i] : std::numeric_limits<double>::quiet_NaN();
-      point.q = i < sff_q.size() ? sff_q[i] : std::numeric_limits<double>::quiet_NaN();
-      point.void_ratio = i < sff_e.size() ? sff_e[i] : std::numeric_limits<double>::quiet_NaN();
+      point.axial_strain = f.axial_strain[i];
+      point.p = f.p[i];
+      point.q = f.q[i];
+      point.void_ratio = f.void_ratio[i];
       point.volumetric_strain = std::numeric_limits<double>::quiet_NaN();
-      point.fabric_invariant = kSqrtTwoThirds * a_c[i] / a_cs;  // A_DEM : n_c / a_cs
+      point.fabric_invariant = kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
       run.fabric.points.push_back(point);
-      if (sff_axial[i] < sff_axial[first]) first = i;
+      if (f.axial_strain[i] < f.axial_strain[first]) first = i;
     }
-    if (!run.fabric.points.empty()) run.initial_a_c = a_c[first];
+    run.initial_a_c = f.a_c[first];
   }
   return run;
 }

@@ -7,10 +7,8 @@
 #include <filesystem>
 
 #include "csv_table.h"
-#include "dem/run_file.h"
-#include "sff/analysis.h"
-#include "sff/run_snapshot.h"
-#include "sff/statistics.h"
+#include "runfile/run_file.h"
+#include "sff/run_analysis.h"
 
 namespace sffcal {
 namespace {
@@ -43,57 +41,29 @@ void print_summary(const std::vector<sff::SnapshotAnalysis>& all, const std::vec
 }  // namespace
 
 int sff_command(const std::vector<std::string>& run_paths, const SffCommandOptions& options) {
+  sff::CheckOptions check_options;
+  check_options.resamples = options.resamples;
+  check_options.seed = options.seed;
   for (const std::string& path : run_paths) {
-    dem::RunFile file = dem::RunFile::open(path, true);
-    const dem::RunConfig config = sff::stored_config(file);
-    const std::vector<std::string> key = {"snapshot", "step", "axial_strain"};
-    std::vector<std::string> columns = key, check_columns = key;
-    for (const std::string& c : sff::analysis_columns()) columns.push_back(c);
-    for (const std::string& c : sff::check_columns()) check_columns.push_back(c);
-    const std::vector<std::string> rose_columns = {"snapshot", "axial_strain", "psi_low_deg",
-                                                   "psi_high_deg", "fraction", "normal_force"};
-    std::vector<std::vector<double>> rows, check_rows, rose_rows;
-    std::vector<sff::SnapshotAnalysis> analysed;
-    std::vector<double> strains;
-    sff::CheckOptions check_options;
-    check_options.resamples = options.resamples;
-    check_options.seed = options.seed;
+    runfile::RunFile file = runfile::RunFile::open(path, true);
     const auto start = std::chrono::steady_clock::now();
     std::printf("%s: %d snapshots, bootstrap %d resamples (seed %llu)\n%8s %8s %7s %7s %7s %7s %7s "
                 "%7s %8s %8s %8s\n",
                 path.c_str(), file.num_snapshots(), options.resamples,
                 static_cast<unsigned long long>(options.seed), "eps_a", "eta", "eta_sff", "eta_dec",
                 "a_c", "a_n", "m", "Z", "sff_err", "R_b/sig", "wall_err");
-    for (int k = 0; k < file.num_snapshots(); ++k) {
-      const dem::Snapshot s = file.read_snapshot(k);
-      const sff::SnapshotInput in = sff::snapshot_input(s, config);
-      try {
-        const sff::SnapshotAnalysis a = sff::analyse_snapshot(in);
-        const sff::SnapshotChecks checks = sff::check_snapshot(in, a, check_options);
-        const std::vector<double> head = {static_cast<double>(k), static_cast<double>(s.step), s.axial_strain};
-        rows.push_back(head);
-        for (double v : sff::analysis_row(a)) rows.back().push_back(v);
-        check_rows.push_back(head);
-        for (double v : sff::check_row(checks)) check_rows.back().push_back(v);
-        const sff::ForceScale scale{in.youngs_modulus, in.solid_volume / in.num_bodies};
-        for (const sff::RoseSector& r : sff::rose_diagram(in.contacts, scale))
-          rose_rows.push_back({static_cast<double>(k), s.axial_strain, r.psi_low_deg, r.psi_high_deg,
-                               r.fraction, r.normal_force});
-        analysed.push_back(a);
-        strains.push_back(s.axial_strain);
-        std::printf("%8.4f %8.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f\n", s.axial_strain,
-                    a.eta, a.eta_sff, a.eta_decoupled, a.a_c, a.a_n, a.m, a.coordination,
-                    a.sff_error, a.branch_ratio, a.wall_stress_error);
-      } catch (const sff::StatisticsError& e) {
-        std::printf("%8.4f  skipped: %s\n", s.axial_strain, e.what());
-      }
-    }
-    file.write_table("sff", columns, rows);
-    file.write_table("sff_checks", check_columns, check_rows);
-    file.write_table("sff_rose", rose_columns, rose_rows);
-    // The bootstrap columns of sff_checks depend on these: kept so the tables can be reproduced.
-    file.write_note("sff_bootstrap", "resamples " + std::to_string(options.resamples) + ", seed " +
-                                         std::to_string(options.seed));
+    const sff::RunTables tables = sff::analyse_run(
+        file, check_options,
+        [](const runfile::Snapshot& s, const sff::SnapshotAnalysis* a, const std::string& skipped) {
+          if (!a) {
+            std::printf("%8.4f  skipped: %s\n", s.axial_strain, skipped.c_str());
+            return;
+          }
+          std::printf("%8.4f %8.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f\n",
+                      s.axial_strain, a->eta, a->eta_sff, a->eta_decoupled, a->a_c, a->a_n, a->m,
+                      a->coordination, a->sff_error, a->branch_ratio, a->wall_stress_error);
+        });
+    sff::store_run_tables(file, tables, check_options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::string stem = path;
@@ -101,10 +71,10 @@ int sff_command(const std::vector<std::string>& run_paths, const SffCommandOptio
       std::filesystem::create_directories(options.csv_folder);
       stem = options.csv_folder + "/" + std::filesystem::path(path).filename().string();
     }
-    write_csv(stem + ".sff.csv", columns, rows);
-    write_csv(stem + ".sff_checks.csv", check_columns, check_rows);
-    write_csv(stem + ".sff_rose.csv", rose_columns, rose_rows);
-    if (!analysed.empty()) print_summary(analysed, strains);
+    write_csv(stem + ".sff.csv", tables.sff_columns, tables.sff_rows);
+    write_csv(stem + ".sff_checks.csv", tables.check_columns, tables.check_rows);
+    write_csv(stem + ".sff_rose.csv", tables.rose_columns, tables.rose_rows);
+    if (!tables.analysed.empty()) print_summary(tables.analysed, tables.axial_strain);
     std::printf("tables: %s:/analysis/{sff,sff_checks,sff_rose} and %s.{sff,sff_checks,sff_rose}.csv "
                 "(%.2f s)\n",
                 path.c_str(), stem.c_str(), seconds);

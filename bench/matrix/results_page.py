@@ -27,8 +27,12 @@ def load(path):
     with h5py.File(path, "r") as f:
         s = {k: f["series"][k][:] for k in ("axial_strain", "eta", "void_ratio", "volumetric_strain")}
         a = {k: f["analysis/sff"][k][:] for k in ("axial_strain", "a_c", "a_n", "a_t", "m", "eta")}
-        summary = f.attrs.get("note:summary", "")
-        summary = summary.decode() if isinstance(summary, bytes) else str(summary)
+        if "summary" in f:  # schema 2: how the test ended, as attributes
+            ended = {"critical_state": "critical state reached",
+                     "max_axial_strain": "maximum axial strain reached"}[f["summary"].attrs["ended"]]
+        else:  # schema 1: the summary note's first clause
+            note = f.attrs.get("note:summary", "")
+            ended = (note.decode() if isinstance(note, bytes) else str(note)).split(";")[0]
     name = os.path.basename(path)[:-3]
     peak = int(np.argmax(s["eta"]))
     near = int(np.argmin(np.abs(a["axial_strain"] - s["axial_strain"][peak])))
@@ -43,7 +47,7 @@ def load(path):
             "peak_ac": a["a_c"][near], "peak_an": a["a_n"][near], "peak_m": a["m"][near],
             "end_ac": a["a_c"][-1], "end_an": a["a_n"][-1], "end_m": a["m"][-1],
             "ac0": a["a_c"][0], "series": s, "sff": a,
-            "ended": summary.split(";")[0]}
+            "ended": ended}
 
 
 def series_table(runs):

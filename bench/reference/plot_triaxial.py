@@ -21,7 +21,8 @@ def main(run_path, png_path):
         eta_c = s["contact_q"][:] / s["contact_p"][:]
         eps_v = s["volumetric_strain"][:] * 100.0
         e = s["void_ratio"][:]
-        summary = f.attrs.get("note:summary", "")
+        summary = (dict(f["summary"].attrs) if "summary" in f  # schema 2
+                   else f.attrs.get("note:summary", ""))
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     axes[0].plot(eps_a, eta, label="walls")
     axes[0].plot(eps_a, eta_c, "--", label="contacts (Love-Weber)")

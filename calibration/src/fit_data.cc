@@ -1,4 +1,4 @@
-// Reading DEM tests for the calibration: run files (dem::RunFile) or the reduced CSV pair.
+// Reading DEM tests for the calibration: run files (runfile::DemTest) or the reduced CSV pair.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -9,19 +9,11 @@
 #include <vector>
 
 #include "calibration/fit.h"
-#include "dem/run_file.h"
-#include "sff/run_snapshot.h"
+#include "runfile/dem_test.h"
 
 namespace calibration {
 
 namespace {
-
-std::string stem(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const std::size_t dot = name.find('.');
-  return dot == std::string::npos ? name : name.substr(0, dot);
-}
 
 std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
   std::ifstream in(path);
@@ -67,6 +59,13 @@ const std::vector<double>& column(const std::map<std::string, std::vector<double
   return it->second;
 }
 
+// The state a test starts from: its first series row and first snapshot.
+void set_initial_state(TestData& t) {
+  if (!t.p.empty()) t.p0 = t.p.front();
+  if (!t.void_ratio.empty()) t.e0 = t.void_ratio.front();
+  if (!t.a_c.empty()) t.a_c0 = t.a_c.front();
+}
+
 void fill_from_tables(TestData& t, const std::map<std::string, std::vector<double>>& series,
                       const std::string& series_where,
                       const std::map<std::string, std::vector<double>>& sff,
@@ -81,45 +80,34 @@ void fill_from_tables(TestData& t, const std::map<std::string, std::vector<doubl
   t.a_n = column(sff, "a_n", sff_where);
   t.mobilisation = column(sff, "m", sff_where);
   t.snapshot_eta = column(sff, "eta", sff_where);
-  if (!t.p.empty()) t.p0 = t.p.front();
-  if (!t.void_ratio.empty()) t.e0 = t.void_ratio.front();
-  if (!t.a_c.empty()) t.a_c0 = t.a_c.front();
+  set_initial_state(t);
 }
 
 }  // namespace
 
 TestData read_run_file(const std::string& path) {
-  TestData t;
-  t.name = stem(path);
-  t.source = path;
-  const dem::RunFile file = dem::RunFile::open(path);
-  const dem::RunMetadata meta = file.metadata();
-  t.seed = meta.seed;
-  t.program_version = meta.program_version;
-  // The friction of shearing, read from the stored config as the DEM and the SFF analysis read
-  // it (its default when [contact] has no friction key; a stored text that is not TOML is
-  // refused naming the file).
-  try {
-    t.friction = sff::stored_config(file).contact.friction;
-  } catch (const std::invalid_argument& e) {  // the reader's errors are runtime_errors
-    throw std::runtime_error(e.what());
-  }
-  std::map<std::string, std::vector<double>> series;
-  for (const char* name : {"axial_strain", "eta", "volumetric_strain", "void_ratio", "p"}) {
-    const auto& names = file.series_names();
-    if (std::find(names.begin(), names.end(), name) == names.end())
-      throw std::runtime_error("run file '" + path + "': missing series '" + name + "'");
-    series[name] = file.series(name);
-  }
-  std::map<std::string, std::vector<double>> sff;
-  try {
-    for (auto& [name, values] : file.read_table("sff")) sff[name] = std::move(values);
-  } catch (const std::runtime_error& e) {
+  const runfile::DemTest dem = runfile::read_dem_test(path);
+  if (!dem.analysed)
     throw std::runtime_error("run file '" + path +
                              "' has no SFF table /analysis/sff (run `sffcal sff " + path +
-                             "` first): " + e.what());
-  }
-  fill_from_tables(t, series, path + ":/series", sff, path + ":/analysis/sff");
+                             "` first)");
+  TestData t;
+  t.name = dem.name;
+  t.source = path;
+  t.seed = dem.metadata.seed;
+  t.program_version = dem.metadata.program_version;
+  t.friction = dem.metadata.physics.friction;  // the friction of shearing, as the DEM used it
+  t.axial_strain = dem.series.axial_strain;
+  t.eta = dem.series.eta;
+  t.volumetric_strain = dem.series.volumetric_strain;
+  t.void_ratio = dem.series.void_ratio;
+  t.p = dem.series.p;
+  t.snapshot_axial_strain = dem.sff.axial_strain;
+  t.a_c = dem.sff.a_c;
+  t.a_n = dem.sff.a_n;
+  t.mobilisation = dem.sff.m;
+  t.snapshot_eta = dem.sff.eta;
+  set_initial_state(t);
   validate_test_data(t);
   return t;
 }

@@ -272,4 +272,20 @@ RunConfig load_run_config(const std::string& path) {
 
 std::string default_run_config_text() { return kDefaultText; }
 
+runfile::RunMetadata run_metadata(const std::string& kind, const RunConfig& config,
+                                  const std::string& program_version) {
+  runfile::RunMetadata m;
+  m.kind = kind;
+  m.config_text = config.text;
+  m.seed = config.seed;
+  m.program_version = program_version;
+  m.physics.youngs_modulus = config.contact.youngs_modulus;
+  m.physics.stiffness_ratio = config.contact.stiffness_ratio;
+  m.physics.friction = config.contact.friction;
+  m.physics.wall_friction = config.contact.wall_friction;
+  m.physics.grain_density = config.grains.density;
+  m.physics.density_scaling = config.engine.density_scaling;
+  return m;
+}
+
 }  // namespace dem

@@ -160,6 +160,22 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
   return particles;
 }
 
+SimulationOptions preparation_engine(const RunConfig& config) {
+  SimulationOptions options = config.engine;
+  options.local_damping = config.preparation.local_damping;
+  options.servo.max_speed = config.preparation.servo_max_speed;
+  return options;
+}
+
+SimulationState reconsolidate(SimulationState specimen, const RunConfig& config, double pressure) {
+  Simulation sim(std::move(specimen), config.contact, preparation_engine(config));
+  CompactionOptions compaction = config.preparation.compaction;
+  compaction.target_stress = pressure;
+  const CompactionResult result = compact_isotropically(sim, compaction);
+  if (!result.converged) throw std::runtime_error("re-consolidation: " + result.summary());
+  return sim.state();
+}
+
 Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
                             const ProgressLog& log, const CompactionProgress& compaction_progress) {
   const PreparationConfig& prep = config.preparation;
@@ -168,9 +184,7 @@ Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
 
   Eigen::Vector3d lo, hi;
   Particles loose;
-  SimulationOptions options = config.engine;
-  options.local_damping = prep.local_damping;
-  options.servo.max_speed = prep.servo_max_speed;
+  const SimulationOptions options = preparation_engine(config);
   ContactParameters law = config.contact;
   law.friction = prep.compaction_friction;
 

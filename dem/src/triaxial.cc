@@ -79,18 +79,6 @@ std::string TriaxialOptions::validate() const {
   return e.str();
 }
 
-std::string TriaxialSummary::describe() const {
-  std::ostringstream s;
-  s << (stop == TriaxialStop::kCriticalState ? "critical state reached" : "maximum axial strain reached")
-    << " at axial strain " << axial_strain << "; peak q/p " << peak_eta << " at " << peak_eta_strain
-    << (stop == TriaxialStop::kCriticalState ? ", critical q/p " : ", final q/p (last window) ")
-    << critical_eta << "; void ratio " << initial_void_ratio << " -> "
-    << final_void_ratio << "; worst lateral stress error " << 100.0 * worst_lateral_error
-    << " %; max inertial number " << max_inertial_number << "; " << steps << " steps in "
-    << wall_seconds << " s";
-  return s.str();
-}
-
 TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& options)
     : sim_(simulation), options_(options) {
   const std::string error = options_.validate();
@@ -253,7 +241,6 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
   if (!resumed) sim_.step();
   const double platen_speed = 0.5 * options_.strain_rate * height0_;
   TriaxialSummary summary;
-  summary.stop = TriaxialStop::kMaxStrain;
   for (;;) {
     // The time step follows the contacts, so the strain of one step is read afresh.
     const double strain_per_step = 2.0 * platen_speed * sim_.time_step() / height0_;
@@ -298,7 +285,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     }
     if (file && strain >= next_checkpoint_ && !done) {
       while (next_checkpoint_ <= strain) next_checkpoint_ += options_.checkpoint_strain_interval;
-      file->write_checkpoint(sim_.state(), extras());
+      write_checkpoint(*file, sim_.state(), extras());
     }
     if (file) file->flush();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -317,7 +304,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       progress(pr);
     }
     if (done) {
-      summary.stop = critical ? TriaxialStop::kCriticalState : TriaxialStop::kMaxStrain;
+      summary.reached_critical_state = critical;
       double sum = 0.0;
       const std::size_t from = window_start < history_eta_.size() ? window_start : 0;
       for (std::size_t k = from; k < history_eta_.size(); ++k) sum += history_eta_[k];
@@ -334,6 +321,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
   summary.max_inertial_number = max_inertial_number_;
   summary.steps = sim_.step_count() - start_step;
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (file) file->write_summary(summary);
   return summary;
 }
 

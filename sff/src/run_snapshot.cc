@@ -10,7 +10,7 @@ namespace sff {
 namespace {
 
 // Solid volume from the spheres: a body's two spheres give its centre distance.
-double solid_volume(const dem::Snapshot& s) {
+double solid_volume(const runfile::Snapshot& s) {
   std::map<std::int64_t, std::vector<std::size_t>> spheres_of;
   for (std::size_t k = 0; k < s.spheres.size(); ++k) spheres_of[s.sphere_body[k]].push_back(k);
   double total = 0.0;
@@ -29,10 +29,10 @@ double solid_volume(const dem::Snapshot& s) {
 
 }  // namespace
 
-SnapshotInput snapshot_input(const dem::Snapshot& s, const dem::RunConfig& config) {
+SnapshotInput snapshot_input(const runfile::Snapshot& s, const runfile::RunPhysics& physics) {
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, force[3] = {0, 0, 0};
   int walls = 0;
-  for (const dem::WallRecord& w : s.walls) {
+  for (const runfile::WallRecord& w : s.walls) {
     (w.upper ? hi : lo)[w.axis] = w.position;
     force[w.axis] += 0.5 * w.normal_force;  // mean of the axis' two walls
     ++walls;
@@ -47,20 +47,15 @@ SnapshotInput snapshot_input(const dem::Snapshot& s, const dem::RunConfig& confi
   in.solid_volume = solid_volume(s);
   in.num_bodies = static_cast<int>(s.particles.size());
   in.centroids.assign(s.particles.size(), Eigen::Vector3d::Zero());
-  for (const dem::ParticleRecord& p : s.particles) {
+  for (const runfile::ParticleRecord& p : s.particles) {
     if (p.id < 0 || p.id >= in.num_bodies)
       throw std::runtime_error("the snapshot has body id " + std::to_string(p.id) + " outside 0.." +
                                std::to_string(in.num_bodies - 1));
     in.centroids[static_cast<std::size_t>(p.id)] = {p.position[0], p.position[1], p.position[2]};
   }
-  in.youngs_modulus = config.contact.youngs_modulus;
-  in.friction = config.contact.friction;
+  in.youngs_modulus = physics.youngs_modulus;
+  in.friction = physics.friction;
   return in;
-}
-
-dem::RunConfig stored_config(const dem::RunFile& file) {
-  return dem::parse_run_config(file.metadata().config_text, file.path() + " (stored config)",
-                               dem::UnknownKeys::kIgnore);
 }
 
 }  // namespace sff

@@ -13,7 +13,8 @@
 #include <random>
 #include <string>
 
-#include "dem/run_file.h"
+#include "dem/run_config.h"
+#include "runfile/run_file.h"
 #include "toyoura.h"
 
 namespace calibration {
@@ -259,24 +260,28 @@ TEST(FitInputs, BadDataGiveClearErrors) {
   expect_error([] { parse_loss("l1"); }, "unknown loss 'l1'");
 }
 
+// A small triaxial run file with the series calibration reads and, when `with_sff`, an SFF table.
+void write_small_run(const std::string& path, const runfile::RunMetadata& meta, bool with_sff) {
+  std::filesystem::remove(path);
+  runfile::RunFile file = runfile::RunFile::create(
+      path, meta, {"axial_strain", "volumetric_strain", "p", "q", "eta", "void_ratio", "sigma_3"});
+  for (int k = 0; k < 5; ++k) file.append_series({0.01 * k, 0.0, 1e5, 1e4 * k, 0.1 * k, 0.7, 1e5});
+  if (with_sff)
+    file.write_table("sff", {"axial_strain", "p", "q", "eta", "void_ratio", "a_c", "a_n", "m"},
+                     {{0.0, 1e5, 0.0, 0.0, 0.7, 0.0, 0.0, 0.0},
+                      {0.02, 1e5, 5e4, 0.5, 0.7, 0.5, 0.4, 0.3}});
+}
+
 TEST(FitInputs, RunFileWithoutSffTableIsNamed) {
   const std::string path =
       (std::filesystem::temp_directory_path() / "calibration_fit_test_no_sff.h5").string();
-  {
-    dem::RunMetadata meta;
-    meta.kind = "triaxial";
-    meta.config_text = "[contact]\nfriction = 0.5\n";
-    dem::RunFile file = dem::RunFile::create(
-        path, meta, {"axial_strain", "eta", "volumetric_strain", "void_ratio", "p"});
-    for (int k = 0; k < 5; ++k) file.append_series({0.01 * k, 0.1 * k, 0.0, 0.7, 1e5});
-  }
+  runfile::RunMetadata meta;
+  meta.kind = "triaxial";
+  meta.physics.friction = 0.5;
+  write_small_run(path, meta, false);
   expect_error([&] { read_run_file(path); }, "has no SFF table /analysis/sff");
-  // With the table it reads, and the friction comes from the stored config.
-  {
-    dem::RunFile file = dem::RunFile::open(path, true);
-    file.write_table("sff", {"axial_strain", "a_c", "a_n", "m", "eta"},
-                     {{0.0, 0.0, 0.0, 0.0, 0.0}, {0.02, 0.5, 0.4, 0.3, 0.5}});
-  }
+  // With the table it reads, and the friction is the run's.
+  write_small_run(path, meta, true);
   const TestData t = read_run_file(path);
   EXPECT_EQ(t.a_c.size(), 2u);
   EXPECT_DOUBLE_EQ(t.friction, 0.5);
@@ -284,27 +289,19 @@ TEST(FitInputs, RunFileWithoutSffTableIsNamed) {
   std::filesystem::remove(path);
 }
 
-// The stored config is read by the DEM's own parser: without a [contact] friction key the run
-// sheared at the DEM default (tan 30 deg), not at 0 (which would skip the SFF strength fit); a
-// stored text that is not TOML is refused, naming the file, as `sffcal sff` refuses it.
-TEST(FitInputs, FrictionComesFromTheDemParserOfTheStoredConfig) {
+// Issue 15's latent bug: a DEM config without [contact] shears at the DEM's default friction
+// (tan 30 deg), and calibration must read that, not 0 (which skipped the SFF strength fit). The
+// DEM's parser decides the friction once and the run file stores it in /physics.
+TEST(FitInputs, FrictionIsTheOneTheDemShearedWith) {
   const std::string path =
       (std::filesystem::temp_directory_path() / "calibration_fit_test_friction.h5").string();
-  auto write = [&](const std::string& config_text) {
-    std::filesystem::remove(path);
-    dem::RunMetadata meta;
-    meta.kind = "triaxial";
-    meta.config_text = config_text;
-    dem::RunFile file = dem::RunFile::create(
-        path, meta, {"axial_strain", "eta", "volumetric_strain", "void_ratio", "p"});
-    for (int k = 0; k < 5; ++k) file.append_series({0.01 * k, 0.1 * k, 0.0, 0.7, 1e5});
-    file.write_table("sff", {"axial_strain", "a_c", "a_n", "m", "eta"},
-                     {{0.0, 0.0, 0.0, 0.0, 0.0}, {0.02, 0.5, 0.4, 0.3, 0.5}});
-  };
-  write("bodies = 100\n");
+  const dem::RunConfig without_contact = dem::parse_run_config("bodies = 100\n");
+  write_small_run(path, dem::run_metadata("triaxial", without_contact, "test"), true);
+  EXPECT_EQ(read_run_file(path).friction, without_contact.contact.friction);
   EXPECT_NEAR(read_run_file(path).friction, std::tan(M_PI / 6.0), 1e-15);
-  write("[contact]\nfriction = = 0.5\n");
-  expect_error([&] { read_run_file(path); }, path);
+  const dem::RunConfig with_contact = dem::parse_run_config("[contact]\nfriction = 0.3\n");
+  write_small_run(path, dem::run_metadata("triaxial", with_contact, "test"), true);
+  EXPECT_EQ(read_run_file(path).friction, 0.3);
   std::filesystem::remove(path);
 }
 

@@ -1,4 +1,4 @@
-#include "dem/run_file.h"
+#include "dem/run_file_io.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -28,7 +28,7 @@ Simulation resume(const std::string& path, const Simulation& whole, const Triaxi
                   std::int64_t* builds = nullptr) {
   RunFile file = RunFile::open(path, true);
   CheckpointExtras extras;
-  SimulationState state = file.read_checkpoint(&extras);
+  SimulationState state = read_checkpoint(file, &extras);
   if (builds) *builds = state.contacts.num_builds();
   Simulation sim(std::move(state), whole.contact_parameters(), whole.options());
   TriaxialTest test(sim, options);
@@ -58,7 +58,7 @@ void expect_same_run(const std::string& whole_path, const Simulation& whole,
 TEST(RunFile, RoundTripsSeriesSnapshotsAndMetadata) {
   const Simulation sim = testing::compacted_specimen(60, 0.3, 5);
   const std::string path = temp_path("roundtrip.h5");
-  const RunMetadata meta{"test", "[dem]\nbodies = 60\n", 5, "0.1.0"};
+  const runfile::RunMetadata meta{"test", "[dem]\nbodies = 60\n", 5, "0.1.0"};
   const Snapshot written = take_snapshot(sim, 0.125);
   {
     RunFile file = RunFile::create(path, meta, {"a", "b"});
@@ -122,7 +122,7 @@ TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
   options.output_strain_interval = 0.0025;
   options.snapshot_strain_interval = 0.02;
   options.checkpoint_strain_interval = 0.015;
-  const RunMetadata meta{"triaxial", "", 9, "test"};
+  const runfile::RunMetadata meta{"triaxial", "", 9, "test"};
 
   const std::string whole_path = temp_path("whole.h5");
   Simulation whole = testing::shearing_copy(specimen);
@@ -191,7 +191,7 @@ TEST(RunFile, ResumeAfterSigkillAndReSortsGivesTheUninterruptedRun) {
   options.output_strain_interval = 0.0025;
   options.snapshot_strain_interval = 0.02;
   options.checkpoint_strain_interval = 0.01;
-  const RunMetadata meta{"triaxial", "", 13, "test"};
+  const runfile::RunMetadata meta{"triaxial", "", 13, "test"};
   auto sheared = [&] {
     Simulation sim = testing::shearing_copy(specimen);
     SimulationOptions engine = sim.options();

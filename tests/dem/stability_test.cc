@@ -15,7 +15,7 @@
 #include "dem/critical_step.h"
 #include "dem/packing.h"
 #include "dem/run_config.h"
-#include "dem/run_file.h"
+#include "dem/run_file_io.h"
 #include "dem/simulation.h"
 #include "dem/specimen.h"
 #include "dem/triaxial.h"

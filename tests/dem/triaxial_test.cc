@@ -186,7 +186,7 @@ TEST(Triaxial, StopsAtTheStrainLimitWhateverTheOutputInterval) {
   const TriaxialSummary summary = test.run(nullptr, [&](const TriaxialProgress&) { ++rows; });
   const double strain_per_step =
       options.strain_rate * sim.time_step();  // 2 * (rate H / 2) dt / H
-  EXPECT_EQ(summary.stop, TriaxialStop::kMaxStrain);
+  EXPECT_FALSE(summary.reached_critical_state);
   EXPECT_NEAR(summary.axial_strain, 0.02, strain_per_step);
   EXPECT_EQ(rows, 2);  // the first row at the start, the last at the limit
   EXPECT_GT(summary.final_void_ratio, 0.0);

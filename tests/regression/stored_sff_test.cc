@@ -15,11 +15,8 @@
 #include <utility>
 #include <vector>
 
-#include "dem/run_config.h"
-#include "dem/run_file.h"
-#include "sff/analysis.h"
-#include "sff/directional.h"
-#include "sff/run_snapshot.h"
+#include "runfile/run_file.h"
+#include "sff/run_analysis.h"
 
 namespace sff {
 namespace {
@@ -60,35 +57,14 @@ struct Recomputed {
   Table sff, checks, rose;
 };
 
-// Every stored snapshot through the library calls of apps/sffcal/sff_command.cc.
-Recomputed reanalyse(const dem::RunFile& file) {
-  const dem::RunConfig config = stored_config(file);
+// Every stored snapshot through the library call of `sffcal sff`.
+Recomputed reanalyse(const runfile::RunFile& file) {
   CheckOptions options;
   options.resamples = kResamples;
   options.seed = kSeed;
-  const std::vector<std::string> key = {"snapshot", "step", "axial_strain"};
-  std::vector<std::string> names = key, check_names = key;
-  names.insert(names.end(), analysis_columns().begin(), analysis_columns().end());
-  check_names.insert(check_names.end(), check_columns().begin(), check_columns().end());
-  std::vector<std::vector<double>> rows, check_rows, rose_rows;
-  for (int k = 0; k < file.num_snapshots(); ++k) {
-    const dem::Snapshot s = file.read_snapshot(k);
-    const SnapshotInput in = snapshot_input(s, config);
-    const SnapshotAnalysis a = analyse_snapshot(in);
-    const std::vector<double> head = {static_cast<double>(k), static_cast<double>(s.step), s.axial_strain};
-    rows.push_back(head);
-    for (double v : analysis_row(a)) rows.back().push_back(v);
-    check_rows.push_back(head);
-    for (double v : check_row(check_snapshot(in, a, options))) check_rows.back().push_back(v);
-    const ForceScale scale{in.youngs_modulus, in.solid_volume / in.num_bodies};
-    for (const RoseSector& r : rose_diagram(in.contacts, scale))
-      rose_rows.push_back({static_cast<double>(k), s.axial_strain, r.psi_low_deg, r.psi_high_deg,
-                           r.fraction, r.normal_force});
-  }
-  return {columns_of(names, rows), columns_of(check_names, check_rows),
-          columns_of({"snapshot", "axial_strain", "psi_low_deg", "psi_high_deg", "fraction",
-                      "normal_force"},
-                     rose_rows)};
+  const RunTables t = analyse_run(file, options);
+  return {columns_of(t.sff_columns, t.sff_rows), columns_of(t.check_columns, t.check_rows),
+          columns_of(t.rose_columns, t.rose_rows)};
 }
 
 std::uint64_t bits(double x) {
@@ -134,7 +110,7 @@ TEST(StoredSff, ReanalysedSnapshotsReproduceTheStoredTablesBitForBit) {
     GTEST_SKIP() << "this build targets another instruction set than the reference tables "
                     "(baseline x86-64: no FMA, no AVX); last bits may differ, see the comment at "
                     "kReferenceTarget";
-  const dem::RunFile file = dem::RunFile::open(kReference);
+  const runfile::RunFile file = runfile::RunFile::open(kReference);
   // Not vacuous: the initial, the peak and the last snapshots, each a row of every table.
   ASSERT_EQ(file.num_snapshots(), 3) << kReference;
   const Recomputed now = reanalyse(file);

@@ -8,8 +8,6 @@
 #include <filesystem>
 
 #include "../dem/specimen_fixture.h"
-#include "dem/run_config.h"
-#include "dem/run_file.h"
 #include "dem/triaxial.h"
 #include "sff/analysis.h"
 #include "sff/run_snapshot.h"
@@ -27,21 +25,22 @@ TEST(DemRun, SffFollowsADenseTestAndForceAnisotropyPeaksWithTheStress) {
   options.checkpoint_strain_interval = 1.0;
   const std::string path =
       (std::filesystem::temp_directory_path() / "sffcal_dem_run_test.h5").string();
-  dem::RunConfig config;
-  config.contact = sim.contact_parameters();
+  runfile::RunMetadata meta{"triaxial", "", 21, "test"};
+  meta.physics.youngs_modulus = sim.contact_parameters().youngs_modulus;
+  meta.physics.friction = sim.contact_parameters().friction;
   {
-    dem::RunFile file = dem::RunFile::create(path, {"triaxial", "", 21, "test"},
-                                             dem::triaxial_series_names());
+    runfile::RunFile file = runfile::RunFile::create(path, meta, dem::triaxial_series_names());
     dem::TriaxialTest(sim, options).run(&file, nullptr);
   }
-  const dem::RunFile file = dem::RunFile::open(path);
+  const runfile::RunFile file = runfile::RunFile::open(path);
+  const runfile::RunPhysics physics = file.metadata().physics;
   ASSERT_GE(file.num_snapshots(), 15);
 
   std::vector<SnapshotAnalysis> all;
   std::vector<double> strain;
   for (int k = 0; k < file.num_snapshots(); ++k) {
-    const dem::Snapshot s = file.read_snapshot(k);
-    const SnapshotInput in = snapshot_input(s, config);
+    const runfile::Snapshot s = file.read_snapshot(k);
+    const SnapshotInput in = snapshot_input(s, physics);
     all.push_back(analyse_snapshot(in));
     strain.push_back(s.axial_strain);
     const SnapshotAnalysis& a = all.back();

@@ -12,6 +12,7 @@
 #include "dem/packing.h"
 #include "dem/simulation.h"
 #include "dem/triaxial.h"
+#include "runfile/run_file.h"
 
 namespace dem {
 
@@ -59,6 +60,10 @@ enum class UnknownKeys { kError, kIgnore };
 RunConfig parse_run_config(const std::string& toml_text, const std::string& source = "config",
                            UnknownKeys unknown = UnknownKeys::kError);
 RunConfig load_run_config(const std::string& path);
+
+/// The metadata of a run file made with `config`: its text, seed and physical constants.
+runfile::RunMetadata run_metadata(const std::string& kind, const RunConfig& config,
+                                  const std::string& program_version);
 
 /// A fully commented TOML file with every key at its default.
 std::string default_run_config_text();

@@ -36,6 +36,15 @@ Simulation prepare_specimen(const RunConfig& config, PreparationReport* report,
                             const ProgressLog& log = nullptr,
                             const CompactionProgress& compaction_progress = nullptr);
 
+/// The engine settings of preparation: the config's engine with the preparation's local damping
+/// and servo speed.
+SimulationOptions preparation_engine(const RunConfig& config);
+
+/// Brings a prepared specimen isotropically to `pressure` [Pa] (a specimen prepared at another
+/// p'0 than the test's sigma_3), with the preparation's engine and the shearing friction. Throws
+/// std::runtime_error when the compaction does not settle.
+SimulationState reconsolidate(SimulationState specimen, const RunConfig& config, double pressure);
+
 /// Unit normal of the bedding plane for a loading angle: the plane contains X and makes
 /// `alpha` with the Y axis, so the normal is (0, -sin alpha, cos alpha) (Z for alpha = 0).
 Eigen::Vector3d bedding_normal(double loading_angle_deg);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/run_file.h"
+#include "dem/run_file_io.h"
 #include "dem/simulation.h"
 
 namespace dem {
@@ -35,20 +35,8 @@ struct TriaxialOptions {
   std::string validate() const;
 };
 
-enum class TriaxialStop { kCriticalState, kMaxStrain };
-
-struct TriaxialSummary {
-  TriaxialStop stop = TriaxialStop::kMaxStrain;
-  double axial_strain = 0.0;
-  double peak_eta = 0.0, peak_eta_strain = 0.0;
-  double critical_eta = 0.0;  ///< mean q/p over the final window (critical if kCriticalState)
-  double initial_void_ratio = 0.0, final_void_ratio = 0.0;
-  double worst_lateral_error = 0.0;   ///< max |sigma_lateral - sigma_3| / sigma_3 at output rows
-  double max_inertial_number = 0.0;
-  std::int64_t steps = 0;
-  double wall_seconds = 0.0;
-  std::string describe() const;
-};
+/// How a test ended: the run file's record of it (stored in /summary).
+using TriaxialSummary = runfile::TestSummary;
 
 /// Progress of a running test, passed to the callback after each series row.
 struct TriaxialProgress {
@@ -87,7 +75,8 @@ class TriaxialTest {
   /// `simulation` must hold a box of six walls around a prepared (compacted) specimen.
   TriaxialTest(Simulation& simulation, const TriaxialOptions& options);
 
-  /// Runs to the end, writing series, snapshots and checkpoints to `file` (may be null).
+  /// Runs to the end, writing series, snapshots, checkpoints and at the end the summary to
+  /// `file` (may be null).
   /// If `file` holds a checkpoint the caller restored, pass `resumed` = true and the extras
   /// read with it.
   TriaxialSummary run(RunFile* file, const std::function<void(const TriaxialProgress&)>& progress,

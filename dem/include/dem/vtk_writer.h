@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/run_file.h"
+#include "dem/run_file_io.h"
 
 namespace dem {
 

@@ -1,5 +1,6 @@
 // A read-only view of contact records, the only input of the SFF statistics (sff never includes
-// a dem/ engine header: the records come from the run file or from the engine in memory).
+// a dem/ header: the records are the run file's, whether read from a file or from the engine in
+// memory).
 #pragma once
 
 #include <cstddef>
@@ -8,11 +9,11 @@
 
 #include <Eigen/Core>
 
-#include "dem/records.h"
+#include "runfile/records.h"
 
 namespace sff {
 
-using dem::ContactRecord;
+using runfile::ContactRecord;
 
 /// Pointer and count of contact records (std::span before C++20), with optional per-contact
 /// weights: every statistic is a weighted mean, so a bootstrap resample (integer multiplicities)

@@ -1,19 +1,15 @@
 // The bridge from a DEM run file's snapshot to the SFF input: box volume and wall stresses from
 // the six walls, solid volume from the clumps' spheres, centroids by body id, E and mu from the
-// run's config. Kept out of the pure `sff` library (this one links the run-file reader).
+// run's physics. Kept out of the pure `sff` library (this one links the run-file reader).
 #pragma once
 
-#include "dem/run_config.h"
-#include "dem/run_file.h"
+#include "runfile/run_file.h"
 #include "sff/analysis.h"
 
 namespace sff {
 
 /// The SFF input of a snapshot; its contact span points into `snapshot`, which must outlive it.
 /// Throws std::runtime_error when the snapshot has no box of six walls or a body id out of range.
-SnapshotInput snapshot_input(const dem::Snapshot& snapshot, const dem::RunConfig& config);
-
-/// The config stored in a run file, read for the keys this version knows.
-dem::RunConfig stored_config(const dem::RunFile& file);
+SnapshotInput snapshot_input(const runfile::Snapshot& snapshot, const runfile::RunPhysics& physics);
 
 }  // namespace sff

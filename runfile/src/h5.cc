@@ -3,9 +3,9 @@
 #include <cstddef>
 #include <stdexcept>
 
-#include "dem/records.h"
+#include "runfile/records.h"
 
-namespace dem::h5 {
+namespace runfile::h5 {
 
 void Handle::reset() {
   if (id_ < 0) return;
@@ -263,4 +263,4 @@ Handle wall_record_type() {
   return t;
 }
 
-}  // namespace dem::h5
+}  // namespace runfile::h5

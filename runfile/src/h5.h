@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace dem::h5 {
+namespace runfile::h5 {
 
 /// Owns one HDF5 identifier and closes it with the matching H5?close.
 class Handle {
@@ -74,4 +74,4 @@ Handle particle_record_type();
 Handle contact_record_type();
 Handle wall_record_type();
 
-}  // namespace dem::h5
+}  // namespace runfile::h5

@@ -1,0 +1,66 @@
+#include "runfile/dem_test.h"
+
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+namespace runfile {
+namespace {
+
+std::string stem(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const std::size_t dot = name.find('.');
+  return dot == std::string::npos ? name : name.substr(0, dot);
+}
+
+// Reads each named column into its destination and checks that all have one length.
+void read_series(const RunFile& file, const std::vector<std::pair<const char*, std::vector<double>*>>& columns) {
+  for (const auto& [name, values] : columns) *values = file.series(name);
+  for (const auto& [name, values] : columns)
+    if (values->size() != columns.front().second->size())
+      throw std::runtime_error("run file " + file.path() + ": /series/" + name + " has " +
+                               std::to_string(values->size()) + " rows, /series/" +
+                               columns.front().first + " " +
+                               std::to_string(columns.front().second->size()));
+}
+
+void read_sff(const RunFile& file, const std::vector<std::pair<const char*, std::vector<double>*>>& columns) {
+  std::map<std::string, std::vector<double>> table;
+  for (auto& [name, values] : file.read_table("sff")) table[name] = std::move(values);
+  for (const auto& [name, values] : columns) {
+    const auto it = table.find(name);
+    if (it == table.end())
+      throw std::runtime_error("run file " + file.path() + ": /analysis/sff has no column '" +
+                               name + "'");
+    *values = std::move(it->second);
+    if (values->size() != columns.front().second->size())
+      throw std::runtime_error("run file " + file.path() + ": /analysis/sff/" + name + " has " +
+                               std::to_string(values->size()) + " rows, /analysis/sff/" +
+                               columns.front().first + " " +
+                               std::to_string(columns.front().second->size()));
+  }
+}
+
+}  // namespace
+
+DemTest read_dem_test(const std::string& path) {
+  const RunFile file = RunFile::open(path);
+  DemTest test;
+  test.path = path;
+  test.name = stem(path);
+  test.metadata = file.metadata();
+  DemTestSeries& s = test.series;
+  read_series(file, {{"axial_strain", &s.axial_strain}, {"volumetric_strain", &s.volumetric_strain},
+                     {"p", &s.p}, {"q", &s.q}, {"eta", &s.eta}, {"void_ratio", &s.void_ratio},
+                     {"sigma_3", &s.sigma_3}});
+  test.analysed = file.has_table("sff");
+  if (test.analysed) {
+    DemTestSff& f = test.sff;
+    read_sff(file, {{"axial_strain", &f.axial_strain}, {"p", &f.p}, {"q", &f.q}, {"eta", &f.eta},
+                    {"void_ratio", &f.void_ratio}, {"a_c", &f.a_c}, {"a_n", &f.a_n}, {"m", &f.m}});
+  }
+  return test;
+}
+
+}  // namespace runfile

@@ -1,0 +1,566 @@
+#include "runfile/run_file.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "h5.h"
+#include "runfile/stored_physics.h"
+
+namespace runfile {
+namespace {
+
+constexpr const char* kUnits = "SI: m, kg, s, N, Pa; angles in rad";
+constexpr const char* kSignConvention =
+    "contact normal from body A to body B; forces act on B; normal_force > 0 in compression; "
+    "stresses and strains compression positive";
+
+std::string snapshot_name(int index) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "/snapshots/%06d", index);
+  return name;
+}
+
+// The attributes of /physics and the real attributes of /summary, named as the fields (declared
+// once here for writing and reading).
+constexpr std::pair<const char*, double RunPhysics::*> kPhysicsFields[] = {
+    {"youngs_modulus", &RunPhysics::youngs_modulus}, {"stiffness_ratio", &RunPhysics::stiffness_ratio},
+    {"friction", &RunPhysics::friction},             {"wall_friction", &RunPhysics::wall_friction},
+    {"grain_density", &RunPhysics::grain_density},   {"density_scaling", &RunPhysics::density_scaling}};
+constexpr std::pair<const char*, double TestSummary::*> kSummaryFields[] = {
+    {"axial_strain", &TestSummary::axial_strain},
+    {"peak_eta", &TestSummary::peak_eta},
+    {"peak_eta_strain", &TestSummary::peak_eta_strain},
+    {"critical_eta", &TestSummary::critical_eta},
+    {"initial_void_ratio", &TestSummary::initial_void_ratio},
+    {"final_void_ratio", &TestSummary::final_void_ratio},
+    {"worst_lateral_error", &TestSummary::worst_lateral_error},
+    {"max_inertial_number", &TestSummary::max_inertial_number},
+    {"wall_seconds", &TestSummary::wall_seconds}};
+
+template <typename Record, std::size_t N>
+void write_fields(hid_t object, const Record& record,
+                  const std::pair<const char*, double Record::*> (&fields)[N]) {
+  for (const auto& [name, member] : fields) h5::write_attribute(object, name, record.*member);
+}
+
+template <typename Record, std::size_t N>
+void read_fields(hid_t object, Record& record,
+                 const std::pair<const char*, double Record::*> (&fields)[N]) {
+  for (const auto& [name, member] : fields) record.*member = h5::read_double_attribute(object, name);
+}
+
+void write_physics(hid_t root, const RunPhysics& physics) {
+  h5::Handle group = h5::create_group(root, "physics");
+  write_fields(group.get(), physics, kPhysicsFields);
+  h5::write_attribute(group.get(), "units",
+                      std::string("youngs_modulus Pa, grain_density kg/m^3, the others 1"));
+}
+
+RunPhysics read_physics(hid_t root) {
+  h5::Handle group = h5::open_group(root, "physics");
+  RunPhysics physics;
+  read_fields(group.get(), physics, kPhysicsFields);
+  return physics;
+}
+
+}  // namespace
+
+struct RunFile::Impl {
+  std::string path;
+  h5::Handle file;
+  std::vector<std::string> series_names;
+  bool writable = false;
+  std::int64_t schema_version = kSchemaVersion;
+
+  hid_t id() const { return file.get(); }
+  // Wraps HDF5 failures with the file name.
+  template <typename F>
+  auto guard(const std::string& what, F&& f) const {
+    try {
+      return f();
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("run file " + path + ": " + what + ": " + e.what());
+    }
+  }
+};
+
+RunFile::RunFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+RunFile::RunFile(RunFile&&) noexcept = default;
+RunFile& RunFile::operator=(RunFile&&) noexcept = default;
+RunFile::~RunFile() {
+  if (impl_ && impl_->writable && impl_->file.valid()) H5Fflush(impl_->id(), H5F_SCOPE_GLOBAL);
+}
+
+RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
+                        const std::vector<std::string>& series_names) {
+  h5::silence_errors();
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->writable = true;
+  impl->series_names = series_names;
+  impl->guard("create", [&] {
+    impl->file = h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                           "create the file (is the folder there and writable?)");
+    const hid_t root = impl->id();
+    h5::write_attribute(root, "schema_version", kSchemaVersion);
+    h5::write_attribute(root, "program", std::string("sffcal"));
+    h5::write_attribute(root, "program_version", metadata.program_version);
+    h5::write_attribute(root, "kind", metadata.kind);
+    h5::write_attribute(root, "seed", static_cast<std::int64_t>(metadata.seed));
+    h5::write_attribute(root, "config", metadata.config_text);
+    h5::write_attribute(root, "units", std::string(kUnits));
+    h5::write_attribute(root, "sign_convention", std::string(kSignConvention));
+    write_physics(root, metadata.physics);
+    h5::Handle series = h5::create_group(root, "series");
+    std::string joined;
+    for (const std::string& name : series_names) {
+      h5::create_extendible(series.get(), name);
+      joined += (joined.empty() ? "" : ",") + name;
+    }
+    h5::write_attribute(series.get(), "columns", joined);
+    h5::create_group(root, "snapshots");
+    return 0;
+  });
+  RunFile file(std::move(impl));
+  file.flush();
+  return file;
+}
+
+RunFile RunFile::open(const std::string& path, bool writable) {
+  h5::silence_errors();
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->writable = writable;
+  impl->guard("open", [&] {
+    impl->file = h5::check(
+        H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT),
+        "open the file (missing, or not an HDF5 file?)");
+    impl->schema_version = h5::read_int_attribute(impl->id(), "schema_version");
+    if (impl->schema_version < kOldestReadableSchema || impl->schema_version > kSchemaVersion)
+      throw std::runtime_error("schema version " + std::to_string(impl->schema_version) +
+                               ", this version reads " + std::to_string(kOldestReadableSchema) +
+                               " to " + std::to_string(kSchemaVersion));
+    h5::Handle series = h5::open_group(impl->id(), "series");
+    std::stringstream columns(h5::read_string_attribute(series.get(), "columns"));
+    std::string name;
+    while (std::getline(columns, name, ',')) impl->series_names.push_back(name);
+    return 0;
+  });
+  return RunFile(std::move(impl));
+}
+
+const std::string& RunFile::path() const { return impl_->path; }
+bool RunFile::writable() const { return impl_->writable; }
+
+RunMetadata RunFile::metadata() const {
+  return impl_->guard("read metadata", [&] {
+    RunMetadata m;
+    m.kind = h5::read_string_attribute(impl_->id(), "kind");
+    m.config_text = h5::read_string_attribute(impl_->id(), "config");
+    m.seed = static_cast<std::uint64_t>(h5::read_int_attribute(impl_->id(), "seed"));
+    m.program_version = h5::read_string_attribute(impl_->id(), "program_version");
+    m.schema_version = impl_->schema_version;
+    m.physics = impl_->schema_version >= 2
+                    ? read_physics(impl_->id())
+                    : physics_from_config_text(m.config_text, impl_->path + " (stored config)");
+    return m;
+  });
+}
+
+void RunFile::write_note(const std::string& key, const std::string& text) {
+  impl_->guard("write note " + key, [&] {
+    h5::write_attribute(impl_->id(), "note:" + key, text);
+    return 0;
+  });
+}
+
+std::string RunFile::read_note(const std::string& key) const {
+  return impl_->guard("read note " + key, [&] {
+    const std::string name = "note:" + key;
+    if (H5Aexists(impl_->id(), name.c_str()) <= 0) return std::string();
+    return h5::read_string_attribute(impl_->id(), name);
+  });
+}
+
+const std::vector<std::string>& RunFile::series_names() const { return impl_->series_names; }
+
+void RunFile::append_series(const std::vector<double>& row) {
+  if (row.size() != impl_->series_names.size())
+    throw std::invalid_argument("run file " + impl_->path + ": a series row has " +
+                                std::to_string(row.size()) + " values for " +
+                                std::to_string(impl_->series_names.size()) + " series");
+  impl_->guard("append to /series", [&] {
+    h5::Handle series = h5::open_group(impl_->id(), "series");
+    for (std::size_t k = 0; k < row.size(); ++k)
+      h5::append(series.get(), impl_->series_names[k], row[k]);
+    return 0;
+  });
+}
+
+std::size_t RunFile::series_length() const {
+  if (impl_->series_names.empty()) return 0;
+  return impl_->guard("read /series", [&] {
+    h5::Handle series = h5::open_group(impl_->id(), "series");
+    return h5::length(series.get(), impl_->series_names.front());
+  });
+}
+
+std::vector<double> RunFile::series(const std::string& name) const {
+  return impl_->guard("read /series/" + name, [&] {
+    h5::Handle series = h5::open_group(impl_->id(), "series");
+    if (!h5::exists(series.get(), name))
+      throw std::runtime_error("no such series (columns: " +
+                               h5::read_string_attribute(series.get(), "columns") + ")");
+    return h5::read_dataset<double>(series.get(), name, H5T_NATIVE_DOUBLE);
+  });
+}
+
+void RunFile::write_snapshot(const Snapshot& s) {
+  const int index = num_snapshots();
+  impl_->guard("write snapshot", [&] {
+    h5::Handle group = h5::create_group(impl_->id(), snapshot_name(index));
+    const hid_t g = group.get();
+    h5::write_attribute(g, "step", s.step);
+    h5::write_attribute(g, "time", s.time);
+    h5::write_attribute(g, "axial_strain", s.axial_strain);
+    h5::write_dataset(g, "particles", h5::particle_record_type().get(), s.particles.data(),
+                      s.particles.size());
+    h5::write_dataset(g, "spheres", H5T_NATIVE_DOUBLE, s.spheres.data(), s.spheres.size(), 4);
+    h5::write_dataset(g, "sphere_body", H5T_NATIVE_INT64, s.sphere_body.data(), s.sphere_body.size());
+    h5::write_dataset(g, "contacts", h5::contact_record_type().get(), s.contacts.data(),
+                      s.contacts.size());
+    h5::write_dataset(g, "walls", h5::wall_record_type().get(), s.walls.data(), s.walls.size());
+    return 0;
+  });
+}
+
+int RunFile::num_snapshots() const {
+  return impl_->guard("count snapshots", [&] {
+    h5::Handle group = h5::open_group(impl_->id(), "snapshots");
+    H5G_info_t info;
+    h5::check_status(H5Gget_info(group.get(), &info), "read /snapshots");
+    return static_cast<int>(info.nlinks);
+  });
+}
+
+Snapshot RunFile::read_snapshot(int index) const {
+  return impl_->guard("read snapshot " + std::to_string(index), [&] {
+    if (index < 0 || index >= num_snapshots())
+      throw std::runtime_error("no such snapshot (the file has " +
+                               std::to_string(num_snapshots()) + ")");
+    h5::Handle group = h5::open_group(impl_->id(), snapshot_name(index));
+    const hid_t g = group.get();
+    Snapshot s;
+    s.step = h5::read_int_attribute(g, "step");
+    s.time = h5::read_double_attribute(g, "time");
+    s.axial_strain = h5::read_double_attribute(g, "axial_strain");
+    s.particles = h5::read_dataset<ParticleRecord>(g, "particles", h5::particle_record_type().get());
+    const auto flat = h5::read_dataset<double>(g, "spheres", H5T_NATIVE_DOUBLE);
+    s.spheres.resize(flat.size() / 4);
+    for (std::size_t k = 0; k < s.spheres.size(); ++k)
+      s.spheres[k] = {flat[4 * k], flat[4 * k + 1], flat[4 * k + 2], flat[4 * k + 3]};
+    s.sphere_body = h5::read_dataset<std::int64_t>(g, "sphere_body", H5T_NATIVE_INT64);
+    s.contacts = h5::read_dataset<ContactRecord>(g, "contacts", h5::contact_record_type().get());
+    s.walls = h5::read_dataset<WallRecord>(g, "walls", h5::wall_record_type().get());
+    return s;
+  });
+}
+
+// ---- how a test ended ----
+
+std::string TestSummary::describe() const {
+  std::ostringstream s;
+  s << (reached_critical_state ? "critical state reached" : "maximum axial strain reached")
+    << " at axial strain " << axial_strain << "; peak q/p " << peak_eta << " at " << peak_eta_strain
+    << (reached_critical_state ? ", critical q/p " : ", final q/p (last window) ") << critical_eta
+    << "; void ratio " << initial_void_ratio << " -> " << final_void_ratio
+    << "; worst lateral stress error " << 100.0 * worst_lateral_error
+    << " %; max inertial number " << max_inertial_number << "; " << steps << " steps in "
+    << wall_seconds << " s";
+  return s.str();
+}
+
+void RunFile::write_summary(const TestSummary& summary) {
+  impl_->guard("write /summary", [&] {
+    const hid_t root = impl_->id();
+    if (h5::exists(root, "summary")) H5Ldelete(root, "summary", H5P_DEFAULT);
+    h5::Handle group = h5::create_group(root, "summary");
+    const hid_t g = group.get();
+    h5::write_attribute(g, "ended", std::string(summary.reached_critical_state ? "critical_state"
+                                                                              : "max_axial_strain"));
+    write_fields(g, summary, kSummaryFields);
+    h5::write_attribute(g, "steps", summary.steps);
+    return 0;
+  });
+  flush();
+}
+
+bool RunFile::has_summary() const { return h5::exists(impl_->id(), "summary"); }
+
+TestSummary RunFile::read_summary() const {
+  return impl_->guard("read /summary", [&] {
+    if (!has_summary()) throw std::runtime_error("the file has no test summary (an unfinished run?)");
+    h5::Handle group = h5::open_group(impl_->id(), "summary");
+    const hid_t g = group.get();
+    TestSummary s;
+    const std::string ended = h5::read_string_attribute(g, "ended");
+    if (ended != "critical_state" && ended != "max_axial_strain")
+      throw std::runtime_error("'ended' is '" + ended + "', not critical_state or max_axial_strain");
+    s.reached_critical_state = ended == "critical_state";
+    read_fields(g, s, kSummaryFields);
+    s.steps = h5::read_int_attribute(g, "steps");
+    return s;
+  });
+}
+
+// ---- checkpoints ----
+
+namespace {
+
+template <typename T>
+hid_t native_type();
+template <>
+hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
+template <>
+hid_t native_type<std::int32_t>() { return H5T_NATIVE_INT32; }
+template <>
+hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; }
+template <>
+hid_t native_type<std::uint8_t>() { return H5T_NATIVE_UINT8; }
+
+constexpr const char* kCheckpoint = "checkpoint";
+constexpr const char* kNewCheckpoint = "checkpoint_new";
+
+}  // namespace
+
+struct StateWriter::Impl {
+  RunFile* file = nullptr;
+  const RunFile::Impl* owner = nullptr;
+  h5::Handle group;
+  bool committed = false;
+};
+
+StateWriter::StateWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+StateWriter::StateWriter(StateWriter&&) noexcept = default;
+StateWriter::~StateWriter() = default;
+
+void StateWriter::attribute(const std::string& name, double value) {
+  impl_->owner->guard("write checkpoint", [&] {
+    h5::write_attribute(impl_->group.get(), name, value);
+    return 0;
+  });
+}
+
+void StateWriter::attribute(const std::string& name, std::int64_t value) {
+  impl_->owner->guard("write checkpoint", [&] {
+    h5::write_attribute(impl_->group.get(), name, value);
+    return 0;
+  });
+}
+
+void StateWriter::extras(const CheckpointExtras& extras) {
+  impl_->owner->guard("write checkpoint extras", [&] {
+    h5::Handle extra = h5::create_group(impl_->group.get(), "extras");
+    for (const auto& [key, value] : extras) h5::write_attribute(extra.get(), key, value);
+    return 0;
+  });
+}
+
+template <typename T>
+void StateWriter::array(const std::string& name, const T* data, std::size_t rows,
+                        std::size_t columns) {
+  impl_->owner->guard("write checkpoint", [&] {
+    h5::write_dataset(impl_->group.get(), name, native_type<T>(), data, rows, columns);
+    return 0;
+  });
+}
+
+void StateWriter::walls(const std::vector<WallRecord>& walls) {
+  impl_->owner->guard("write checkpoint", [&] {
+    h5::write_dataset(impl_->group.get(), "walls", h5::wall_record_type().get(), walls.data(),
+                      walls.size());
+    return 0;
+  });
+}
+
+void StateWriter::commit() {
+  if (impl_->committed) throw std::logic_error("StateWriter::commit called twice");
+  impl_->owner->guard("write checkpoint", [&] {
+    impl_->group.reset();
+    const hid_t root = impl_->owner->id();
+    if (h5::exists(root, kCheckpoint)) H5Ldelete(root, kCheckpoint, H5P_DEFAULT);
+    h5::check_status(H5Lmove(root, kNewCheckpoint, root, kCheckpoint, H5P_DEFAULT, H5P_DEFAULT),
+                     "rename the new checkpoint");
+    return 0;
+  });
+  impl_->committed = true;
+  impl_->file->flush();
+}
+
+StateWriter RunFile::begin_checkpoint() {
+  auto writer = std::make_unique<StateWriter::Impl>();
+  writer->file = this;
+  writer->owner = impl_.get();
+  impl_->guard("write checkpoint", [&] {
+    // Written beside the old one and swapped in by commit(): a run killed while writing still
+    // has the previous checkpoint.
+    const hid_t root = impl_->id();
+    if (h5::exists(root, kNewCheckpoint)) H5Ldelete(root, kNewCheckpoint, H5P_DEFAULT);
+    writer->group = h5::create_group(root, kNewCheckpoint);
+    h5::write_attribute(writer->group.get(), "series_length",
+                        static_cast<std::int64_t>(series_length()));
+    h5::write_attribute(writer->group.get(), "num_snapshots",
+                        static_cast<std::int64_t>(num_snapshots()));
+    return 0;
+  });
+  return StateWriter(std::move(writer));
+}
+
+struct StateReader::Impl {
+  const RunFile::Impl* owner = nullptr;
+  h5::Handle group;
+};
+
+StateReader::StateReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+StateReader::StateReader(StateReader&&) noexcept = default;
+StateReader::~StateReader() = default;
+
+std::string StateReader::where(const std::string& what) const {
+  return "run file " + impl_->owner->path + ": read checkpoint: " + what;
+}
+
+bool StateReader::has(const std::string& name) const {
+  return h5::exists(impl_->group.get(), name) ||
+         H5Aexists(impl_->group.get(), name.c_str()) > 0;
+}
+
+double StateReader::real(const std::string& name) const {
+  return impl_->owner->guard("read checkpoint",
+                             [&] { return h5::read_double_attribute(impl_->group.get(), name); });
+}
+
+std::int64_t StateReader::integer(const std::string& name) const {
+  return impl_->owner->guard("read checkpoint",
+                             [&] { return h5::read_int_attribute(impl_->group.get(), name); });
+}
+
+CheckpointExtras StateReader::extras() const {
+  return impl_->owner->guard("read checkpoint extras", [&] {
+    CheckpointExtras extras;
+    h5::Handle extra = h5::open_group(impl_->group.get(), "extras");
+    H5O_info_t info;
+    h5::check_status(H5Oget_info2(extra.get(), &info, H5O_INFO_NUM_ATTRS), "read extras");
+    for (hsize_t k = 0; k < info.num_attrs; ++k) {
+      char name[256];
+      H5Aget_name_by_idx(extra.get(), ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof(name),
+                         H5P_DEFAULT);
+      extras[name] = h5::read_double_attribute(extra.get(), name);
+    }
+    return extras;
+  });
+}
+
+template <typename T>
+std::vector<T> StateReader::array(const std::string& name) const {
+  return impl_->owner->guard("read checkpoint", [&] {
+    return h5::read_dataset<T>(impl_->group.get(), name, native_type<T>());
+  });
+}
+
+std::vector<WallRecord> StateReader::walls() const {
+  return impl_->owner->guard("read checkpoint", [&] {
+    return h5::read_dataset<WallRecord>(impl_->group.get(), "walls", h5::wall_record_type().get());
+  });
+}
+
+bool RunFile::has_checkpoint() const { return h5::exists(impl_->id(), kCheckpoint); }
+
+StateReader RunFile::read_checkpoint() const {
+  auto reader = std::make_unique<StateReader::Impl>();
+  reader->owner = impl_.get();
+  impl_->guard("read checkpoint", [&] {
+    if (!has_checkpoint()) throw std::runtime_error("the file has no checkpoint");
+    reader->group = h5::open_group(impl_->id(), kCheckpoint);
+    return 0;
+  });
+  return StateReader(std::move(reader));
+}
+
+void RunFile::rewind_to_checkpoint() {
+  impl_->guard("rewind to the checkpoint", [&] {
+    if (!impl_->writable) throw std::runtime_error("the file is open read-only");
+    h5::Handle group = h5::open_group(impl_->id(), kCheckpoint);
+    const auto rows = static_cast<std::size_t>(h5::read_int_attribute(group.get(), "series_length"));
+    h5::Handle series = h5::open_group(impl_->id(), "series");
+    for (const std::string& name : impl_->series_names) h5::truncate(series.get(), name, rows);
+    const auto kept = static_cast<int>(h5::read_int_attribute(group.get(), "num_snapshots"));
+    for (int k = num_snapshots() - 1; k >= kept; --k)
+      H5Ldelete(impl_->id(), snapshot_name(k).c_str(), H5P_DEFAULT);
+    return 0;
+  });
+}
+
+#define RUNFILE_STATE_TYPE(T)                                                                  \
+  template void StateWriter::array<T>(const std::string&, const T*, std::size_t, std::size_t); \
+  template std::vector<T> StateReader::array<T>(const std::string&) const;
+RUNFILE_STATE_TYPE(double)
+RUNFILE_STATE_TYPE(std::int32_t)
+RUNFILE_STATE_TYPE(std::int64_t)
+RUNFILE_STATE_TYPE(std::uint8_t)
+#undef RUNFILE_STATE_TYPE
+
+void RunFile::write_table(const std::string& name, const std::vector<std::string>& columns,
+                          const std::vector<std::vector<double>>& rows) {
+  impl_->guard("write table /analysis/" + name, [&] {
+    const std::string path = "analysis/" + name;
+    if (h5::exists(impl_->id(), path)) H5Ldelete(impl_->id(), path.c_str(), H5P_DEFAULT);
+    h5::Handle group = h5::create_group(impl_->id(), path);
+    std::string joined;
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      std::vector<double> column;
+      for (const auto& row : rows) {
+        if (row.size() != columns.size()) throw std::runtime_error("a row has the wrong length");
+        column.push_back(row[k]);
+      }
+      h5::write_dataset(group.get(), columns[k], H5T_NATIVE_DOUBLE, column.data(), column.size());
+      joined += (joined.empty() ? "" : ",") + columns[k];
+    }
+    h5::write_attribute(group.get(), "columns", joined);
+    return 0;
+  });
+  flush();
+}
+
+bool RunFile::has_table(const std::string& name) const {
+  return h5::exists(impl_->id(), "analysis/" + name);
+}
+
+std::vector<std::pair<std::string, std::vector<double>>> RunFile::read_table(
+    const std::string& name) const {
+  return impl_->guard("read table /analysis/" + name, [&] {
+    const std::string path = "analysis/" + name;
+    if (!has_table(name))
+      throw std::runtime_error("no such table (run `sffcal sff` on the file first?)");
+    h5::Handle group = h5::open_group(impl_->id(), path);
+    const std::string joined = h5::read_string_attribute(group.get(), "columns");
+    std::vector<std::pair<std::string, std::vector<double>>> table;
+    std::size_t begin = 0;
+    while (begin <= joined.size() && !joined.empty()) {
+      std::size_t end = joined.find(',', begin);
+      if (end == std::string::npos) end = joined.size();
+      const std::string column = joined.substr(begin, end - begin);
+      table.emplace_back(column, h5::read_dataset<double>(group.get(), column, H5T_NATIVE_DOUBLE));
+      begin = end + 1;
+    }
+    return table;
+  });
+}
+
+void RunFile::flush() {
+  if (impl_->writable) H5Fflush(impl_->id(), H5F_SCOPE_GLOBAL);
+}
+
+}  // namespace runfile
