@@ -239,6 +239,7 @@ void RunFile::write_snapshot(const Snapshot& s) {
 
 int RunFile::num_snapshots() const {
   return impl_->guard("count snapshots", [&] {
+    if (!h5::exists(impl_->id(), "snapshots")) return 0;  // a reduced file keeps none
     h5::Handle group = h5::open_group(impl_->id(), "snapshots");
     H5G_info_t info;
     h5::check_status(H5Gget_info(group.get(), &info), "read /snapshots");
