@@ -25,9 +25,15 @@ using fit_detail::run_test;
 
 namespace {
 
-constexpr std::array<const char*, kNumFitParameters> kNames = {
-    "G0", "nu", "M_c", "c", "e_gamma", "lambda_c", "xi", "m", "h0", "c_h",
-    "n_b", "A0", "n_d", "e_A", "k_F", "a_cs"};
+// The model's parameters, then a_cs.
+static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 15);
+const std::array<const char*, kNumFitParameters> kNames = [] {
+  std::array<const char*, kNumFitParameters> names{};
+  for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
+    names[k] = kParameterFields<double>[k].first;
+  names[kAcsIndex] = "a_cs";
+  return names;
+}();
 
 double mean(const std::vector<double>& v) {
   double s = 0.0;
@@ -54,8 +60,11 @@ int fit_parameter_index(const std::string& name) {
 }
 
 FitVector to_fit_vector(const Parameters<double>& p, double a_cs) {
-  return {p.G0, p.nu, p.M_c, p.c, p.e_gamma, p.lambda_c, p.xi, p.m,
-          p.h0, p.c_h, p.n_b, p.A0, p.n_d, p.e_A, p.k_F, a_cs};
+  FitVector x{};
+  for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
+    x[k] = p.*kParameterFields<double>[k].second;
+  x[kAcsIndex] = a_cs;
+  return x;
 }
 
 Parameters<double> model_parameters(const FitVector& x) {

@@ -37,8 +37,9 @@ int count_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec);
 
 template <typename T>
 Parameters<T> parameters_of(const std::array<T, kNumFitParameters>& v) {
-  return Parameters<T>{v[0], v[1], v[2],  v[3],  v[4],  v[5],  v[6], v[7],
-                       v[8], v[9], v[10], v[11], v[12], v[13], v[14]};
+  Parameters<T> p;
+  for (std::size_t k = 0; k < kParameterFields<T>.size(); ++k) p.*kParameterFields<T>[k].second = v[k];
+  return p;
 }
 
 /// x.v += d.v[0] * delta for every entry (chain rule through the lateral strain).

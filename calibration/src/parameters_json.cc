@@ -15,18 +15,8 @@ namespace {
 
 using Json = nlohmann::json;
 
-// Name and member of each parameter, in the order of acst-model.md. All are dimensionless.
-const std::pair<const char*, double Parameters<double>::*> kFields[] = {
-    {"G0", &Parameters<double>::G0},           {"nu", &Parameters<double>::nu},
-    {"M_c", &Parameters<double>::M_c},         {"c", &Parameters<double>::c},
-    {"e_gamma", &Parameters<double>::e_gamma}, {"lambda_c", &Parameters<double>::lambda_c},
-    {"xi", &Parameters<double>::xi},           {"m", &Parameters<double>::m},
-    {"h0", &Parameters<double>::h0},           {"c_h", &Parameters<double>::c_h},
-    {"n_b", &Parameters<double>::n_b},         {"A0", &Parameters<double>::A0},
-    {"n_d", &Parameters<double>::n_d},         {"e_A", &Parameters<double>::e_A},
-    {"k_F", &Parameters<double>::k_F},
-};
-
+// All the parameters are dimensionless.
+constexpr const auto& kFields = kParameterFields<double>;
 constexpr const char* kDimensionless = "1";
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {

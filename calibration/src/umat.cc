@@ -40,10 +40,12 @@ void to_abaqus(const Tensor<double>& t, double* v, int n, double sign) {
   for (int k = 0; k < n; ++k) v[k] = sign * t(kRow[k], kCol[k]);
 }
 
-// The 15 parameters in the order of umat.h.
+// The 15 parameters in the order of umat.h (that of kParameterFields).
 Parameters<double> parameters_from(const double* p) {
-  return {p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
-          p[8], p[9], p[10], p[11], p[12], p[13], p[14]};
+  Parameters<double> par;
+  for (std::size_t k = 0; k < calibration::kParameterFields<double>.size(); ++k)
+    par.*calibration::kParameterFields<double>[k].second = p[k];
+  return par;
 }
 
 // The parameter file named by SFFCAL_ACST_PARAMETERS, read once per path (thread-safe).

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -32,6 +33,18 @@ template <typename T>
 struct Parameters {
   T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F;
 };
+
+/// Name and member of each parameter, in the order of acst-model.md: the one list that the
+/// parameter file, the fit vector and the fit's tables follow.
+template <typename T>
+inline constexpr std::array<std::pair<const char*, T Parameters<T>::*>, 15> kParameterFields = {{
+    {"G0", &Parameters<T>::G0},   {"nu", &Parameters<T>::nu},   {"M_c", &Parameters<T>::M_c},
+    {"c", &Parameters<T>::c},     {"e_gamma", &Parameters<T>::e_gamma},
+    {"lambda_c", &Parameters<T>::lambda_c},                     {"xi", &Parameters<T>::xi},
+    {"m", &Parameters<T>::m},     {"h0", &Parameters<T>::h0},   {"c_h", &Parameters<T>::c_h},
+    {"n_b", &Parameters<T>::n_b}, {"A0", &Parameters<T>::A0},   {"n_d", &Parameters<T>::n_d},
+    {"e_A", &Parameters<T>::e_A}, {"k_F", &Parameters<T>::k_F},
+}};
 
 template <typename T>
 struct State {

@@ -102,10 +102,10 @@ void add_scaled(State<T>& s, const Increment<T>& inc, double factor) {
 
 template <typename U, typename T>
 Parameters<U> cast_parameters(const Parameters<T>& par) {
-  auto c = [](const T& x) { return U(value_of(x)); };
-  return Parameters<U>{c(par.G0),  c(par.nu),  c(par.M_c), c(par.c),   c(par.e_gamma),
-                       c(par.lambda_c), c(par.xi), c(par.m), c(par.h0), c(par.c_h),
-                       c(par.n_b), c(par.A0),  c(par.n_d), c(par.e_A), c(par.k_F)};
+  Parameters<U> cast;
+  for (std::size_t k = 0; k < kParameterFields<T>.size(); ++k)
+    cast.*kParameterFields<U>[k].second = U(value_of(par.*kParameterFields<T>[k].second));
+  return cast;
 }
 
 template <typename U, typename T>
