@@ -88,6 +88,7 @@ using CheckpointExtras = std::map<std::string, double>;
 
 /// Writes one checkpoint beside the previous one; commit() swaps it in, so a run killed while
 /// writing keeps the previous checkpoint. The arrays' names and meaning belong to the writer.
+/// The RunFile that began it must stay where it is (not moved) until the writer is gone.
 /// Element types: double, std::int32_t, std::int64_t, std::uint8_t.
 class StateWriter {
  public:
