@@ -52,7 +52,7 @@ struct RunMetadata {
   std::string config_text;      ///< the full configuration the run was made with
   std::uint64_t seed = 0;
   std::string program_version;
-  RunPhysics physics;
+  RunPhysics physics = {};
   std::int64_t schema_version = kSchemaVersion;  ///< of the file it was read from
 };
 
