@@ -14,18 +14,24 @@ std::string stem(const std::string& path) {
   return dot == std::string::npos ? name : name.substr(0, dot);
 }
 
-// Reads each named column into its destination and checks that all have one length.
-void read_series(const RunFile& file, const std::vector<std::pair<const char*, std::vector<double>*>>& columns) {
-  for (const auto& [name, values] : columns) *values = file.series(name);
+using Columns = std::vector<std::pair<const char*, std::vector<double>*>>;
+
+// All the columns of `group` (e.g. "/series") have the length of the first.
+void check_lengths(const RunFile& file, const std::string& group, const Columns& columns) {
+  const auto& [first, first_values] = columns.front();
   for (const auto& [name, values] : columns)
-    if (values->size() != columns.front().second->size())
-      throw std::runtime_error("run file " + file.path() + ": /series/" + name + " has " +
-                               std::to_string(values->size()) + " rows, /series/" +
-                               columns.front().first + " " +
-                               std::to_string(columns.front().second->size()));
+    if (values->size() != first_values->size())
+      throw std::runtime_error("run file " + file.path() + ": " + group + "/" + name + " has " +
+                               std::to_string(values->size()) + " rows, " + group + "/" + first +
+                               " " + std::to_string(first_values->size()));
 }
 
-void read_sff(const RunFile& file, const std::vector<std::pair<const char*, std::vector<double>*>>& columns) {
+void read_series(const RunFile& file, const Columns& columns) {
+  for (const auto& [name, values] : columns) *values = file.series(name);
+  check_lengths(file, "/series", columns);
+}
+
+void read_sff(const RunFile& file, const Columns& columns) {
   std::map<std::string, std::vector<double>> table;
   for (auto& [name, values] : file.read_table("sff")) table[name] = std::move(values);
   for (const auto& [name, values] : columns) {
@@ -34,12 +40,8 @@ void read_sff(const RunFile& file, const std::vector<std::pair<const char*, std:
       throw std::runtime_error("run file " + file.path() + ": /analysis/sff has no column '" +
                                name + "'");
     *values = std::move(it->second);
-    if (values->size() != columns.front().second->size())
-      throw std::runtime_error("run file " + file.path() + ": /analysis/sff/" + name + " has " +
-                               std::to_string(values->size()) + " rows, /analysis/sff/" +
-                               columns.front().first + " " +
-                               std::to_string(columns.front().second->size()));
   }
+  check_lengths(file, "/analysis/sff", columns);
 }
 
 }  // namespace

@@ -339,9 +339,9 @@ constexpr const char* kNewCheckpoint = "checkpoint_new";
 
 struct StateWriter::Impl {
   RunFile* file = nullptr;
-  const RunFile::Impl* owner = nullptr;
   h5::Handle group;
   bool committed = false;
+  const RunFile::Impl& owner() const { return *file->impl_; }
 };
 
 StateWriter::StateWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -349,21 +349,21 @@ StateWriter::StateWriter(StateWriter&&) noexcept = default;
 StateWriter::~StateWriter() = default;
 
 void StateWriter::attribute(const std::string& name, double value) {
-  impl_->owner->guard("write checkpoint", [&] {
+  impl_->owner().guard("write checkpoint", [&] {
     h5::write_attribute(impl_->group.get(), name, value);
     return 0;
   });
 }
 
 void StateWriter::attribute(const std::string& name, std::int64_t value) {
-  impl_->owner->guard("write checkpoint", [&] {
+  impl_->owner().guard("write checkpoint", [&] {
     h5::write_attribute(impl_->group.get(), name, value);
     return 0;
   });
 }
 
 void StateWriter::extras(const CheckpointExtras& extras) {
-  impl_->owner->guard("write checkpoint extras", [&] {
+  impl_->owner().guard("write checkpoint extras", [&] {
     h5::Handle extra = h5::create_group(impl_->group.get(), "extras");
     for (const auto& [key, value] : extras) h5::write_attribute(extra.get(), key, value);
     return 0;
@@ -373,14 +373,14 @@ void StateWriter::extras(const CheckpointExtras& extras) {
 template <typename T>
 void StateWriter::array(const std::string& name, const T* data, std::size_t rows,
                         std::size_t columns) {
-  impl_->owner->guard("write checkpoint", [&] {
+  impl_->owner().guard("write checkpoint", [&] {
     h5::write_dataset(impl_->group.get(), name, native_type<T>(), data, rows, columns);
     return 0;
   });
 }
 
 void StateWriter::walls(const std::vector<WallRecord>& walls) {
-  impl_->owner->guard("write checkpoint", [&] {
+  impl_->owner().guard("write checkpoint", [&] {
     h5::write_dataset(impl_->group.get(), "walls", h5::wall_record_type().get(), walls.data(),
                       walls.size());
     return 0;
@@ -389,9 +389,9 @@ void StateWriter::walls(const std::vector<WallRecord>& walls) {
 
 void StateWriter::commit() {
   if (impl_->committed) throw std::logic_error("StateWriter::commit called twice");
-  impl_->owner->guard("write checkpoint", [&] {
+  impl_->owner().guard("write checkpoint", [&] {
     impl_->group.reset();
-    const hid_t root = impl_->owner->id();
+    const hid_t root = impl_->owner().id();
     if (h5::exists(root, kCheckpoint)) H5Ldelete(root, kCheckpoint, H5P_DEFAULT);
     h5::check_status(H5Lmove(root, kNewCheckpoint, root, kCheckpoint, H5P_DEFAULT, H5P_DEFAULT),
                      "rename the new checkpoint");
@@ -404,7 +404,6 @@ void StateWriter::commit() {
 StateWriter RunFile::begin_checkpoint() {
   auto writer = std::make_unique<StateWriter::Impl>();
   writer->file = this;
-  writer->owner = impl_.get();
   impl_->guard("write checkpoint", [&] {
     // Written beside the old one and swapped in by commit(): a run killed while writing still
     // has the previous checkpoint.

@@ -16,7 +16,8 @@ RunTables analyse_run(const runfile::RunFile& file, const CheckOptions& options,
   t.check_columns.insert(t.check_columns.end(), check_columns().begin(), check_columns().end());
   t.rose_columns = {"snapshot", "axial_strain", "psi_low_deg", "psi_high_deg", "fraction",
                     "normal_force"};
-  for (int k = 0; k < file.num_snapshots(); ++k) {
+  const int num_snapshots = file.num_snapshots();
+  for (int k = 0; k < num_snapshots; ++k) {
     const runfile::Snapshot s = file.read_snapshot(k);
     const SnapshotInput in = snapshot_input(s, physics);
     SnapshotAnalysis a;

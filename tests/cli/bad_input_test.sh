@@ -103,6 +103,10 @@ with h5py.File(sys.argv[1], "r+") as f:
         c = f["snapshots/000000/contacts"][:]
         c["body_a"][0] = 10**9
         f["snapshots/000000/contacts"][...] = c
+    elif case == "newer_schema":
+        f.attrs["schema_version"] = np.int64(3)
+    elif case == "no_physics":
+        del f["physics"]
 EOF
   }
   for c in short_mass:"mass has 57 entries" pair_index:"pair 0" wall_index:"wall candidate 0" \
@@ -118,6 +122,16 @@ EOF
   tamper snapshot_body.h5 snapshot_body
   expect_failure "vtk of a snapshot whose contact names a missing body" "refers to body 1000000000" \
     "$sffcal" vtk snapshot_body.h5 -o vtk
+  # The run file's schema (issue 15): a newer one is refused naming both versions, and a schema-2
+  # file without its /physics names the group rather than guessing the constants.
+  cp run.h5 newer_schema.h5
+  tamper newer_schema.h5 newer_schema
+  expect_failure "a run file of a newer schema is refused" "schema version 3, this version reads 1 to 2" \
+    "$sffcal" info newer_schema.h5
+  cp run.h5 no_physics.h5
+  tamper no_physics.h5 no_physics
+  expect_failure "a schema-2 run file without /physics names it" "cannot open group physics" \
+    "$sffcal" sff no_physics.h5
 else
   echo "skip the edited checkpoints: $python has no h5py"
 fi

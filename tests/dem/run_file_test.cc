@@ -110,18 +110,24 @@ TEST(RunFile, ClearErrorsForMissingFilesAndSeries) {
   std::remove(path.c_str());
 }
 
+// A short test to 5 % axial strain with frequent rows, snapshots and checkpoints.
+TriaxialOptions short_test(double checkpoint_strain_interval) {
+  TriaxialOptions options;
+  options.strain_rate = 100.0;
+  options.max_axial_strain = 0.05;
+  options.output_strain_interval = 0.0025;
+  options.snapshot_strain_interval = 0.02;
+  options.checkpoint_strain_interval = checkpoint_strain_interval;
+  return options;
+}
+
 struct Killed : std::runtime_error {
   Killed() : std::runtime_error("killed") {}
 };
 
 TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
   const Simulation specimen = testing::compacted_specimen(80, 0.2, 9);
-  TriaxialOptions options;
-  options.strain_rate = 100.0;
-  options.max_axial_strain = 0.05;
-  options.output_strain_interval = 0.0025;
-  options.snapshot_strain_interval = 0.02;
-  options.checkpoint_strain_interval = 0.015;
+  const TriaxialOptions options = short_test(0.015);
   const runfile::RunMetadata meta{"triaxial", "", 9, "test"};
 
   const std::string whole_path = temp_path("whole.h5");
@@ -185,12 +191,7 @@ TEST(RunFile, ATamperedStateIsRefusedNamingTheArray) {
 // (issue 17: the grain totals were summed in the re-sorted order and moved by up to 3 ulp).
 TEST(RunFile, ResumeAfterSigkillAndReSortsGivesTheUninterruptedRun) {
   const Simulation specimen = testing::compacted_specimen(80, 0.2, 13);
-  TriaxialOptions options;
-  options.strain_rate = 100.0;
-  options.max_axial_strain = 0.05;
-  options.output_strain_interval = 0.0025;
-  options.snapshot_strain_interval = 0.02;
-  options.checkpoint_strain_interval = 0.01;
+  const TriaxialOptions options = short_test(0.01);
   const runfile::RunMetadata meta{"triaxial", "", 13, "test"};
   auto sheared = [&] {
     Simulation sim = testing::shearing_copy(specimen);
