@@ -1,5 +1,6 @@
 #include "output_guard.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -11,9 +12,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Whether a file can be created in `folder`, found by creating (and removing) one: access(2)
+// answers yes to root on any folder, and no permission bit shows a read-only mount, a full quota or
+// a file system such as /proc that takes no new files.
 bool writable_folder(const fs::path& folder) {
   std::error_code error;
-  return fs::is_directory(folder, error) && ::access(folder.c_str(), W_OK | X_OK) == 0;
+  if (!fs::is_directory(folder, error)) return false;
+  const fs::path probe = folder / (".sffcal-write-probe-" + std::to_string(::getpid()));
+  const int fd = ::open(probe.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0600);
+  if (fd < 0) return false;
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return true;
 }
 
 // The folder a new entry at `path` would be created in ("." for a bare name).

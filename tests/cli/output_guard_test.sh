@@ -56,6 +56,20 @@ expect_failure "dem refuses an existing specimen file beside the run" "run.h5.sp
   "$sffcal" dem -c my.toml -o run.h5
 expect_failure "an output folder under a file cannot be created" "not a writable folder" \
   "$sffcal" vtk specimen.h5 -o my.toml/vtk
+# A folder that takes no new file whoever runs the test: root writes into a mode-555 folder, so
+# /proc (which accepts no new files, even from root) stands for a read-only mount.
+expect_failure "prepare into a folder that takes no files (/proc) is refused before any work" \
+  "not a writable folder" "$sffcal" prepare -c my.toml -o /proc/specimen.h5
+expect_failure "calibrate into a folder that cannot be made under /proc is refused before the fit" \
+  "cannot be created" "$sffcal" calibrate specimen.h5 -o /proc/sffcal-calibration
+if [[ $(id -u) != 0 ]]; then
+  mkdir locked && chmod 555 locked
+  expect_failure "prepare into a mode-555 folder is refused before any work" \
+    "not a writable folder" "$sffcal" prepare -c my.toml -o locked/specimen.h5
+  chmod 755 locked
+else
+  echo "skip the mode-555 folder (root may write into it)"
+fi
 test ! -e run.h5 && echo "ok   nothing was written by the refused commands" ||
   { echo "FAIL run.h5 was written"; failures=$((failures + 1)); }
 
