@@ -189,8 +189,8 @@ class Runner:
             lines = f.read().splitlines()
         lines = lines[max(i for i, line in enumerate(lines) if line.startswith("$ ")) + 1:]
         # the lines that report the error, wherever stderr put them among the (buffered) stdout:
-        # sffcal's "sffcal: error: ..." and "sffcal calibrate: ...", Python's "...Error: ..."
-        errors = [line for line in lines if "error" in line.lower() or line.startswith("sffcal calibrate:")]
+        # sffcal's "sffcal: error: ...", Python's "...Error: ..."
+        errors = [line for line in lines if "error" in line.lower()]
         named = [p for p in task.inputs if any(p in line or os.path.basename(p) in line for line in errors)]
         if not named and len(task.inputs) == 1:
             named = task.inputs

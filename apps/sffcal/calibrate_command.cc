@@ -15,55 +15,50 @@ namespace sffcal {
 
 int calibrate_command(const std::vector<std::string>& run_paths,
                       const CalibrateCommandOptions& options, const std::string& command_line) {
-  try {
-    calibration::FitOptions fit;
-    fit.stages = calibration::parse_stages(options.stages);
-    fit.loss = calibration::parse_loss(options.loss);
-    fit.starts = options.starts;
-    fit.seed = options.seed;
-    fit.max_points = options.max_points;
-    fit.verbose = options.verbose;
-    fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-    const auto begin = std::chrono::steady_clock::now();
-    fit.progress = [begin](const std::string& line) {
-      const double t =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-      std::printf("[%8.1f s] %s\n", t, line.c_str());
-      std::fflush(stdout);
-    };
-    auto read = [](const std::vector<std::string>& paths, const char* role) {
-      std::vector<calibration::TestData> tests;
-      for (const std::string& path : paths) {
-        tests.push_back(calibration::read_run_file(path));
-        const calibration::TestData& t = tests.back();
-        std::printf("read %s (%s): %zu rows, %zu snapshots, p0 = %.0f Pa, e0 = %.4f, a_c0 = %.4f, "
-                    "mu = %.4f\n",
-                    path.c_str(), role, t.axial_strain.size(), t.a_c.size(), t.p0, t.e0, t.a_c0,
-                    t.friction);
-      }
-      return tests;
-    };
-    const std::vector<calibration::TestData> tests = read(run_paths, "fitted");
-    const std::vector<calibration::TestData> held_out = read(options.held_out, "held out");
-    for (const calibration::TestData& h : held_out)
-      for (const calibration::TestData& t : tests)
-        if (h.source == t.source)
-          throw std::runtime_error("'" + h.source + "' is both fitted and held out");
-    const auto start = std::chrono::steady_clock::now();
-    calibration::CalibrationResult result = calibration::calibrate(tests, fit);
-    calibration::predict(held_out, fit, result);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const std::string summary = calibration::write_calibration_outputs(
-        options.output_folder, tests, result, fit, SFFCAL_VERSION, command_line, held_out);
-    std::printf("\n%s\ncalibrated in %.1f s; outputs in %s (plot: scripts/plot_calibration.py %s)\n",
-                summary.c_str(), seconds, options.output_folder.c_str(),
-                options.output_folder.c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "sffcal calibrate: %s\n", e.what());
-    return 1;
-  }
+  calibration::FitOptions fit;
+  fit.stages = calibration::parse_stages(options.stages);
+  fit.loss = calibration::parse_loss(options.loss);
+  fit.starts = options.starts;
+  fit.seed = options.seed;
+  fit.max_points = options.max_points;
+  fit.verbose = options.verbose;
+  fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const auto begin = std::chrono::steady_clock::now();
+  fit.progress = [begin](const std::string& line) {
+    const double t =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    std::printf("[%8.1f s] %s\n", t, line.c_str());
+    std::fflush(stdout);
+  };
+  auto read = [](const std::vector<std::string>& paths, const char* role) {
+    std::vector<calibration::TestData> tests;
+    for (const std::string& path : paths) {
+      tests.push_back(calibration::read_run_file(path));
+      const calibration::TestData& t = tests.back();
+      std::printf("read %s (%s): %zu rows, %zu snapshots, p0 = %.0f Pa, e0 = %.4f, a_c0 = %.4f, "
+                  "mu = %.4f\n",
+                  path.c_str(), role, t.axial_strain.size(), t.a_c.size(), t.p0, t.e0, t.a_c0,
+                  t.friction);
+    }
+    return tests;
+  };
+  const std::vector<calibration::TestData> tests = read(run_paths, "fitted");
+  const std::vector<calibration::TestData> held_out = read(options.held_out, "held out");
+  for (const calibration::TestData& h : held_out)
+    for (const calibration::TestData& t : tests)
+      if (h.source == t.source)
+        throw std::runtime_error("'" + h.source + "' is both fitted and held out");
+  const auto start = std::chrono::steady_clock::now();
+  calibration::CalibrationResult result = calibration::calibrate(tests, fit);
+  calibration::predict(held_out, fit, result);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string summary = calibration::write_calibration_outputs(
+      options.output_folder, tests, result, fit, SFFCAL_VERSION, command_line, held_out);
+  std::printf("\n%s\ncalibrated in %.1f s; outputs in %s (plot: scripts/plot_calibration.py %s)\n",
+              summary.c_str(), seconds, options.output_folder.c_str(),
+              options.output_folder.c_str());
+  return 0;
 }
 
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -70,6 +71,26 @@ Eigen::Matrix3d particle_axis_fabric(const Particles& particles) {
   return phi / particles.num_bodies();
 }
 
+namespace {
+
+// A cell as the error message shows it: quoted, control characters and bytes beyond ASCII as \xNN
+// (a raw carriage return would overwrite the message on the terminal).
+std::string quoted(const std::string& cell) {
+  std::string out = "'";
+  for (const unsigned char c : cell) {
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
+      out += hex;
+    }
+  }
+  return out + "'";
+}
+
+}  // namespace
+
 Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
                            Eigen::Vector3d* hi, double max_overlap_ratio) {
   std::ifstream in(path);
@@ -121,8 +142,8 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
       } catch (const std::exception&) {
         used = 0;
       }
-      if (value.empty() || used != value.size()) fail("'" + cell + "' is not a number");
-      if (!std::isfinite(x)) fail("'" + cell + "' is not finite");
+      if (value.empty() || used != value.size()) fail(quoted(cell) + " is not a number");
+      if (!std::isfinite(x)) fail(quoted(cell) + " is not finite");
       v.push_back(x);
     }
     if (v.size() != 7 && v.size() != 10) fail("a row needs 7 or 10 values, found " + std::to_string(v.size()));

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace dem {
 namespace {
@@ -70,9 +71,13 @@ std::string TriaxialOptions::validate() const {
   if (!(strain_rate > 0.0)) e << "strain_rate must be positive [1/s]; ";
   if (!(max_axial_strain > 0.0 && max_axial_strain < 0.9))
     e << "max_axial_strain must lie in (0, 0.9); ";
-  if (!(output_strain_interval > 0.0)) e << "output_strain_interval must be positive; ";
-  if (!(snapshot_strain_interval > 0.0)) e << "snapshot_strain_interval must be positive; ";
-  if (!(checkpoint_strain_interval > 0.0)) e << "checkpoint_strain_interval must be positive; ";
+  // An interval below 1e-9 of strain means nothing physically, and one below the rounding of the
+  // strain (1e-320) never advances the next row: the run would loop on one row for ever.
+  for (const auto& [name, value] : {std::pair{"output_strain_interval", output_strain_interval},
+                                    {"snapshot_strain_interval", snapshot_strain_interval},
+                                    {"checkpoint_strain_interval", checkpoint_strain_interval}})
+    if (!(value >= kMinStrainInterval && value <= 1.0))
+      e << name << " must lie in [" << kMinStrainInterval << ", 1], not " << value << "; ";
   if (!(critical_window > 0.0)) e << "critical_window must be positive; ";
   if (!(critical_eta_change > 0.0)) e << "critical_eta_change must be positive; ";
   if (!(critical_volume_change > 0.0)) e << "critical_volume_change must be positive; ";
@@ -104,6 +109,15 @@ TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& option
       w.target_stress = options_.confining_stress;
     }
   drive_platens();
+  const double steps_needed = options_.max_axial_strain / (options_.strain_rate * sim_.time_step());
+  if (!(steps_needed <= kMaxTestSteps)) {
+    std::ostringstream msg;
+    msg << "triaxial: strain_rate " << options_.strain_rate << " /s at the time step "
+        << sim_.time_step() << " s needs " << steps_needed << " steps to reach axial strain "
+        << options_.max_axial_strain << " (more than " << kMaxTestSteps
+        << "): raise strain_rate";
+    throw std::invalid_argument(msg.str());
+  }
   initial_void_ratio_ = void_ratio();
   if (!(std::isfinite(initial_void_ratio_) && initial_void_ratio_ > 0.0 &&
         std::isfinite(mean_density_) && mean_density_ > 0.0)) {

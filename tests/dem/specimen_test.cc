@@ -156,6 +156,18 @@ TEST(Preparation, LoadsACsvPackingAndNamesBadLines) {
       EXPECT_NE(std::string(e.what()).find(":3: '" + cell + "' is not"), std::string::npos) << e.what();
     }
   }
+  // A control character in a cell is shown escaped (a raw carriage return would overwrite the
+  // message on the terminal).
+  {
+    std::ofstream out(path);
+    out << "# box: 0 0 0 4e-4 4e-4 4e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n1e-4,1\r2,1e-4,1,0,0,5e-5\n";
+  }
+  try {
+    load_csv_packing(path, GrainSpec{}, &lo, &hi);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(":3: '1\\x0d2' is not a number"), std::string::npos) << e.what();
+  }
   {
     std::ofstream out(path);
     out << "# box: 0 0 0 4e-4 4e-4 4e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n1e-4,1e-4,1e-4,1,0,0,5e-5,\n";

@@ -73,6 +73,25 @@ TEST(Triaxial, RejectsBadOptions) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("strain_rate"), std::string::npos);
   }
+  // An interval the strain's rounding cannot advance looped for ever on one row (issue 17).
+  options = TriaxialOptions{};
+  options.checkpoint_strain_interval = 1e-320;
+  EXPECT_NE(options.validate().find("checkpoint_strain_interval must lie in"), std::string::npos);
+  options.checkpoint_strain_interval = 0.01;
+  options.output_strain_interval = 2.0;
+  EXPECT_NE(options.validate().find("output_strain_interval must lie in"), std::string::npos);
+  options.output_strain_interval = kMinStrainInterval;
+  EXPECT_EQ(options.validate(), "");
+  // A strain rate that would need more than kMaxTestSteps steps is refused with the count.
+  options = TriaxialOptions{};
+  options.strain_rate = 1e-300;
+  try {
+    TriaxialTest test(sim, options);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("steps to reach axial strain"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The grain totals a test divides by (void ratio, inertial number) do not depend on the order the

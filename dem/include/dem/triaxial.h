@@ -14,6 +14,11 @@
 
 namespace dem {
 
+/// The smallest output, snapshot and checkpoint interval of axial strain accepted.
+constexpr double kMinStrainInterval = 1e-9;
+/// The most steps a test may need at its strain rate (the paper-size test needs about 1e6).
+constexpr double kMaxTestSteps = 1e9;
+
 struct TriaxialOptions {
   double confining_stress = 100e3;   ///< sigma_3 held on the lateral walls [Pa]
   /// Axial strain rate [1/s]. The paper: 20 /s (0.06 m/s on 3 mm); 100 /s stays within the seed
