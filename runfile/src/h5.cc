@@ -62,6 +62,16 @@ Handle create_group(hid_t location, const std::string& path) {
                "create group " + path);
 }
 
+Handle create_unlinked_group(hid_t file) {
+  return check(H5Gcreate_anon(file, H5P_DEFAULT, H5P_DEFAULT), "create a group");
+}
+
+void link(hid_t object, hid_t location, const std::string& path) {
+  Handle plist = check(H5Pcreate(H5P_LINK_CREATE), "create a property list");
+  H5Pset_create_intermediate_group(plist.get(), 1);
+  check_status(H5Olink(object, location, path.c_str(), plist.get(), H5P_DEFAULT), "link " + path);
+}
+
 namespace {
 
 void write_scalar_attribute(hid_t object, const std::string& name, hid_t type,
@@ -126,6 +136,21 @@ std::int64_t read_int_attribute(hid_t object, const std::string& name) {
   return value;
 }
 
+Handle crash_safe_access_properties() {
+  Handle plist = check(H5Pcreate(H5P_FILE_ACCESS), "create a property list");
+  // No metadata evictions between flushes (the cache holds what one row, snapshot or checkpoint
+  // changes): a half-updated object never reaches the disk ahead of the flush.
+  H5AC_cache_config_t cache;
+  cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  check_status(H5Pget_mdc_config(plist.get(), &cache), "read the metadata cache settings");
+  cache.evictions_enabled = false;
+  cache.incr_mode = H5C_incr__off;
+  cache.flash_incr_mode = H5C_flash_incr__off;
+  cache.decr_mode = H5C_decr__off;
+  check_status(H5Pset_mdc_config(plist.get(), &cache), "set the metadata cache");
+  return plist;
+}
+
 void write_dataset(hid_t location, const std::string& name, hid_t type, const void* data,
                    std::size_t rows, std::size_t cols) {
   const int rank = cols == 0 ? 1 : 2;
@@ -176,8 +201,6 @@ void create_extendible(hid_t location, const std::string& name) {
   Handle space = check(H5Screate_simple(1, dims, max_dims), "create dataspace for " + name);
   Handle plist = check(H5Pcreate(H5P_DATASET_CREATE), "create a property list");
   H5Pset_chunk(plist.get(), 1, chunk);
-  H5Pset_shuffle(plist.get());
-  H5Pset_deflate(plist.get(), 4);
   check(H5Dcreate2(location, name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT,
                    plist.get(), H5P_DEFAULT),
         "create dataset " + name);

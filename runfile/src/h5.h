@@ -42,9 +42,18 @@ void check_status(herr_t status, const std::string& what);
 /// Silences HDF5's own error printing (we report errors ourselves).
 void silence_errors();
 
+/// The file-access properties of a file written during a run that may be killed at any moment
+/// (docs/run-file.md, "A killed run"): metadata reaches the disk only at H5Fflush, never by an
+/// eviction between flushes, so the file on disk stays the one of the last flush until the next.
+Handle crash_safe_access_properties();
+
 bool exists(hid_t location, const std::string& path);
 Handle open_group(hid_t location, const std::string& path);
 Handle create_group(hid_t location, const std::string& path);
+/// A group no path leads to yet: written and flushed whole before `link` makes it reachable.
+Handle create_unlinked_group(hid_t file);
+/// Links `object` at `path` under `location`, creating the missing intermediate groups.
+void link(hid_t object, hid_t location, const std::string& path);
 
 void write_attribute(hid_t object, const std::string& name, const std::string& value);
 void write_attribute(hid_t object, const std::string& name, double value);
@@ -62,7 +71,9 @@ template <typename T>
 std::vector<T> read_dataset(hid_t location, const std::string& name, hid_t type,
                             std::size_t* cols = nullptr);
 
-/// An extendible 1-D dataset of doubles (unlimited length, chunked).
+/// An extendible 1-D dataset of doubles (unlimited length, chunked, not compressed: a compressed
+/// chunk moves in the file each time it grows, and a kill between the move and the next flush
+/// left it unreadable).
 void create_extendible(hid_t location, const std::string& name);
 void append(hid_t location, const std::string& name, double value);
 std::size_t length(hid_t location, const std::string& name);

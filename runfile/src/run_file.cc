@@ -76,6 +76,18 @@ struct RunFile::Impl {
   std::int64_t schema_version = kSchemaVersion;
 
   hid_t id() const { return file.get(); }
+  void flush() const { h5::check_status(H5Fflush(id(), H5F_SCOPE_GLOBAL), "flush"); }
+  // Makes `object`, written unlinked, reachable at `where` in place of what was there, so that a
+  // run killed at any moment finds at `where` the old object or the new one, each whole: the new
+  // one reaches the disk in a flush before any link to it, and the old one is unlinked in the
+  // flush that writes the new link (docs/run-file.md, "A killed run").
+  void publish(hid_t object, const std::string& where) const {
+    flush();
+    if (h5::exists(id(), where))
+      h5::check_status(H5Ldelete(id(), where.c_str(), H5P_DEFAULT), "unlink the old " + where);
+    h5::link(object, id(), where);
+    flush();
+  }
   // Wraps HDF5 failures with the file name.
   template <typename F>
   auto guard(const std::string& what, F&& f) const {
@@ -102,7 +114,8 @@ RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
   impl->writable = true;
   impl->series_names = series_names;
   impl->guard("create", [&] {
-    impl->file = h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+    const h5::Handle access = h5::crash_safe_access_properties();
+    impl->file = h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
                            "create the file (is the folder there and writable?)");
     const hid_t root = impl->id();
     h5::write_attribute(root, "schema_version", kSchemaVersion);
@@ -135,8 +148,10 @@ RunFile RunFile::open(const std::string& path, bool writable) {
   impl->path = path;
   impl->writable = writable;
   impl->guard("open", [&] {
+    const h5::Handle access =
+        writable ? h5::crash_safe_access_properties() : h5::Handle(H5Pcreate(H5P_FILE_ACCESS));
     impl->file = h5::check(
-        H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT),
+        H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, access.get()),
         "open the file (missing, or not an HDF5 file?)");
     impl->schema_version = h5::read_int_attribute(impl->id(), "schema_version");
     if (impl->schema_version < kOldestReadableSchema || impl->schema_version > kSchemaVersion)
@@ -221,7 +236,7 @@ std::vector<double> RunFile::series(const std::string& name) const {
 void RunFile::write_snapshot(const Snapshot& s) {
   const int index = num_snapshots();
   impl_->guard("write snapshot", [&] {
-    h5::Handle group = h5::create_group(impl_->id(), snapshot_name(index));
+    h5::Handle group = h5::create_unlinked_group(impl_->id());
     const hid_t g = group.get();
     h5::write_attribute(g, "step", s.step);
     h5::write_attribute(g, "time", s.time);
@@ -233,6 +248,7 @@ void RunFile::write_snapshot(const Snapshot& s) {
     h5::write_dataset(g, "contacts", h5::contact_record_type().get(), s.contacts.data(),
                       s.contacts.size());
     h5::write_dataset(g, "walls", h5::wall_record_type().get(), s.walls.data(), s.walls.size());
+    impl_->publish(g, snapshot_name(index));
     return 0;
   });
 }
@@ -286,17 +302,15 @@ std::string TestSummary::describe() const {
 
 void RunFile::write_summary(const TestSummary& summary) {
   impl_->guard("write /summary", [&] {
-    const hid_t root = impl_->id();
-    if (h5::exists(root, "summary")) H5Ldelete(root, "summary", H5P_DEFAULT);
-    h5::Handle group = h5::create_group(root, "summary");
+    h5::Handle group = h5::create_unlinked_group(impl_->id());
     const hid_t g = group.get();
     h5::write_attribute(g, "ended", std::string(summary.reached_critical_state ? "critical_state"
                                                                               : "max_axial_strain"));
     write_fields(g, summary, kSummaryFields);
     h5::write_attribute(g, "steps", summary.steps);
+    impl_->publish(g, "summary");
     return 0;
   });
-  flush();
 }
 
 bool RunFile::has_summary() const { return h5::exists(impl_->id(), "summary"); }
@@ -333,7 +347,7 @@ template <>
 hid_t native_type<std::uint8_t>() { return H5T_NATIVE_UINT8; }
 
 constexpr const char* kCheckpoint = "checkpoint";
-constexpr const char* kNewCheckpoint = "checkpoint_new";
+constexpr const char* kNewCheckpoint = "checkpoint_new";  // sffcal 0.1's name, removed if found
 
 }  // namespace
 
@@ -390,26 +404,23 @@ void StateWriter::walls(const std::vector<WallRecord>& walls) {
 void StateWriter::commit() {
   if (impl_->committed) throw std::logic_error("StateWriter::commit called twice");
   impl_->owner().guard("write checkpoint", [&] {
+    impl_->owner().publish(impl_->group.get(), kCheckpoint);
     impl_->group.reset();
-    const hid_t root = impl_->owner().id();
-    if (h5::exists(root, kCheckpoint)) H5Ldelete(root, kCheckpoint, H5P_DEFAULT);
-    h5::check_status(H5Lmove(root, kNewCheckpoint, root, kCheckpoint, H5P_DEFAULT, H5P_DEFAULT),
-                     "rename the new checkpoint");
     return 0;
   });
   impl_->committed = true;
-  impl_->file->flush();
 }
 
 StateWriter RunFile::begin_checkpoint() {
   auto writer = std::make_unique<StateWriter::Impl>();
   writer->file = this;
   impl_->guard("write checkpoint", [&] {
-    // Written beside the old one and swapped in by commit(): a run killed while writing still
-    // has the previous checkpoint.
+    // Written unlinked and put in place of the old one by commit(): a run killed while writing
+    // still has the previous checkpoint.
     const hid_t root = impl_->id();
-    if (h5::exists(root, kNewCheckpoint)) H5Ldelete(root, kNewCheckpoint, H5P_DEFAULT);
-    writer->group = h5::create_group(root, kNewCheckpoint);
+    if (h5::exists(root, kNewCheckpoint))  // left by sffcal 0.1, which renamed it in place
+      H5Ldelete(root, kNewCheckpoint, H5P_DEFAULT);
+    writer->group = h5::create_unlinked_group(root);
     h5::write_attribute(writer->group.get(), "series_length",
                         static_cast<std::int64_t>(series_length()));
     h5::write_attribute(writer->group.get(), "num_snapshots",
@@ -499,6 +510,7 @@ void RunFile::rewind_to_checkpoint() {
     const auto kept = static_cast<int>(h5::read_int_attribute(group.get(), "num_snapshots"));
     for (int k = num_snapshots() - 1; k >= kept; --k)
       H5Ldelete(impl_->id(), snapshot_name(k).c_str(), H5P_DEFAULT);
+    impl_->flush();  // before anything reuses the space freed
     return 0;
   });
 }
@@ -516,8 +528,7 @@ void RunFile::write_table(const std::string& name, const std::vector<std::string
                           const std::vector<std::vector<double>>& rows) {
   impl_->guard("write table /analysis/" + name, [&] {
     const std::string path = "analysis/" + name;
-    if (h5::exists(impl_->id(), path)) H5Ldelete(impl_->id(), path.c_str(), H5P_DEFAULT);
-    h5::Handle group = h5::create_group(impl_->id(), path);
+    h5::Handle group = h5::create_unlinked_group(impl_->id());
     std::string joined;
     for (std::size_t k = 0; k < columns.size(); ++k) {
       std::vector<double> column;
@@ -529,9 +540,9 @@ void RunFile::write_table(const std::string& name, const std::vector<std::string
       joined += (joined.empty() ? "" : ",") + columns[k];
     }
     h5::write_attribute(group.get(), "columns", joined);
+    impl_->publish(group.get(), path);
     return 0;
   });
-  flush();
 }
 
 bool RunFile::has_table(const std::string& name) const {
@@ -560,7 +571,7 @@ std::vector<std::pair<std::string, std::vector<double>>> RunFile::read_table(
 }
 
 void RunFile::flush() {
-  if (impl_->writable) H5Fflush(impl_->id(), H5F_SCOPE_GLOBAL);
+  if (impl_->writable) impl_->guard("flush", [&] { impl_->flush(); return 0; });
 }
 
 }  // namespace runfile
