@@ -136,7 +136,9 @@ def mutate_run_file(rng, path):
                 elif data.dtype.names and data.size:
                     field = rng.choice(data.dtype.names)
                     values = data[field].reshape(len(data), -1)
-                    values[rng.randrange(len(data))] = rng.choice([np.nan, -1, 10 ** 9])
+                    bad = ([np.nan, -1.0, 1e9] if values.dtype.kind == "f"
+                           else [-1, 10 ** 9, np.iinfo(values.dtype).max])
+                    values[rng.randrange(len(data))] = rng.choice(bad)
                     data[field] = values.reshape(data[field].shape)
                     f[name][...] = data
             elif op == 3 and names:
