@@ -183,6 +183,13 @@ int info_command(const std::string& run_path) {
               m.physics.youngs_modulus, m.physics.stiffness_ratio, m.physics.friction,
               m.physics.wall_friction, m.physics.grain_density, m.physics.density_scaling,
               m.schema_version < 2 ? " (from the stored config)" : "");
+  if (!m.loading.path.empty()) {
+    std::printf("loading: %s\n", m.loading.path.c_str());
+    for (int axis = 0; axis < 3; ++axis)
+      std::printf("  %c: %s\n", "xyz"[axis], m.loading.axis_control[axis].c_str());
+  } else if (m.kind == "triaxial") {
+    std::printf("loading: drained_compression (a file from before /loading was written)\n");
+  }
   std::printf("series: %zu rows of %zu columns; snapshots: %d; checkpoint: %s\n",
               file.series_length(), file.series_names().size(), file.num_snapshots(),
               file.has_checkpoint() ? "yes" : "no");

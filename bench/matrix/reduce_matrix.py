@@ -4,7 +4,7 @@
 usage: reduce_matrix.py MATRIX_FOLDER OUT_FOLDER
 
 For every MATRIX_FOLDER/<name>.h5 with an /analysis/sff table (`sffcal sff` done): copies the
-root attributes (config, seed, program version, notes), /physics and /summary (schema 2), the
+root attributes (config, seed, program version, notes), /physics, /loading and /summary, the
 whole /series and every /analysis table into OUT_FOLDER/<name>.h5, without snapshots or checkpoint, and records the source in the
 root note `note:reduction`. `sffcal calibrate` and `sffcal fe-check` read these files as they
 read full run files; `sffcal sff` cannot re-analyse them (no snapshots).
@@ -21,8 +21,8 @@ def reduce(source, target):
     with h5py.File(source, "r") as src, h5py.File(target, "w") as dst:
         for key, value in src.attrs.items():
             dst.attrs[key] = value
-        for group in ("physics", "summary", "series", "analysis"):
-            if group in src:  # schema 1 has neither /physics nor /summary
+        for group in ("physics", "loading", "summary", "series", "analysis"):
+            if group in src:  # schema 1 has none of /physics, /loading, /summary
                 src.copy(src[group], dst, group)
         dst.attrs["note:reduction"] = (f"reduced by bench/matrix/reduce_matrix.py from {os.path.basename(source)}: "
                                        f"/series and /analysis kept; {len(src['snapshots'])} snapshots and "

@@ -63,7 +63,10 @@ max_unbalanced_force = 1.0e-3  # accepted unbalanced-force ratio
 max_steps = 2000000            # give up (error) after this many compaction steps
 
 [triaxial]
-confining_stress = 0.0         # sigma_3 [Pa]; 0 = the preparation pressure
+path = "drained_compression"   # drained_compression | drained_extension | constant_p_compression |
+                               # undrained_compression | undrained_extension | true_triaxial (docs/dem.md)
+confining_stress = 0.0         # sigma_3, or p0 on the constant-p paths [Pa]; 0 = the preparation pressure
+b = 0.0                        # true_triaxial: (sigma_2 - sigma_3) / (sigma_1 - sigma_3) in [0, 1], sigma_2 on y
 strain_rate = 100.0            # axial strain rate [1/s]; within the seed scatter of 20 /s (paper: 0.06 m/s on a 3 mm cube), bench/RESULTS.md
 servo_max_speed = 0.5          # cap on the lateral wall speed [m/s]
 max_axial_strain = 0.45
@@ -73,7 +76,8 @@ checkpoint_strain_interval = 0.02
 critical_window = 0.1          # critical state: over this axial strain window ...
 critical_eta_change = 0.05     # ... the fitted line through q/p changes less than this
 critical_volume_change = 0.005 # ... and through the volumetric strain less than this
-critical_min_strain = 0.2      # not before this axial strain
+critical_mean_stress_change = 0.05  # undrained paths: ... and through p / p0 less than this
+critical_min_strain = 0.2      # not before this |axial strain|
 )";
 
 using Setter = std::function<void(const toml::node&, const std::string& key)>;
@@ -136,6 +140,7 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
   RunConfig c;
   c.text = toml_text;
   std::string method = "compaction";
+  std::string path = loading_path_name(c.triaxial.path);
   double servo_prep = c.preparation.servo_max_speed;
   double servo_shear = 0.5;
   const std::map<std::string, Setter> setters = {
@@ -175,7 +180,9 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
       {"preparation.stress_tolerance", real(c.preparation.compaction.stress_tolerance)},
       {"preparation.max_unbalanced_force", real(c.preparation.compaction.max_unbalanced_force)},
       {"preparation.max_steps", integer(c.preparation.compaction.max_steps, 1)},
+      {"triaxial.path", text(path)},
       {"triaxial.confining_stress", real(c.triaxial.confining_stress)},
+      {"triaxial.b", real(c.triaxial.b)},
       {"triaxial.strain_rate", real(c.triaxial.strain_rate)},
       {"triaxial.servo_max_speed", real(servo_shear)},
       {"triaxial.max_axial_strain", real(c.triaxial.max_axial_strain)},
@@ -185,6 +192,7 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
       {"triaxial.critical_window", real(c.triaxial.critical_window)},
       {"triaxial.critical_eta_change", real(c.triaxial.critical_eta_change)},
       {"triaxial.critical_volume_change", real(c.triaxial.critical_volume_change)},
+      {"triaxial.critical_mean_stress_change", real(c.triaxial.critical_mean_stress_change)},
       {"triaxial.critical_min_strain", real(c.triaxial.critical_min_strain)},
   };
   const std::string where = source + ": ";
@@ -216,6 +224,11 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
   else
     throw std::invalid_argument(where + "preparation.method must be \"compaction\", \"deposition\" or "
                                 "\"csv\" (got \"" + method + "\")");
+  try {
+    c.triaxial.path = parse_loading_path(path);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + "triaxial.path: " + e.what());
+  }
   c.preparation.servo_max_speed = servo_prep;
   c.engine.servo.max_speed = servo_shear;
   c.preparation.compaction.target_stress = c.preparation.pressure;
@@ -285,6 +298,14 @@ runfile::RunMetadata run_metadata(const std::string& kind, const RunConfig& conf
   m.physics.wall_friction = config.contact.wall_friction;
   m.physics.grain_density = config.grains.density;
   m.physics.density_scaling = config.engine.density_scaling;
+  if (kind == "triaxial") {
+    const TriaxialOptions& t = config.triaxial;
+    m.loading.path = loading_path_name(t.path);
+    m.loading.axis_control = axis_controls(t.path, t.confining_stress, t.b, t.strain_rate);
+    m.loading.strain_rate = t.strain_rate;
+    m.loading.confining_stress = t.confining_stress;
+    m.loading.b = t.b;
+  }
   return m;
 }
 

@@ -1,6 +1,7 @@
 #include "dem/triaxial.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -44,13 +45,12 @@ double fitted_change(const std::vector<double>& x, const std::vector<double>& y,
   return (n * sxy - sx * sy) / denominator * (x.back() - x[from]);
 }
 
-}  // namespace
-
-const std::vector<std::string>& triaxial_series_names() { return kSeriesNames; }
-
-bool is_critical_state(const std::vector<double>& strain, const std::vector<double>& eta,
-                       const std::vector<double>& volume, const TriaxialOptions& options,
-                       std::size_t* window_start) {
+// The critical-state test on (strain, eta, second): the fitted lines through eta and through the
+// second quantity (the volumetric strain, or p / p0 on the undrained paths) both flat to within
+// their tolerances over the last critical_window of strain.
+bool stationary_over_window(const std::vector<double>& strain, const std::vector<double>& eta,
+                            const std::vector<double>& second, double second_tolerance,
+                            const TriaxialOptions& options, std::size_t* window_start) {
   std::size_t start = strain.size();
   if (strain.empty()) {
     if (window_start) *window_start = 0;
@@ -62,7 +62,27 @@ bool is_critical_state(const std::vector<double>& strain, const std::vector<doub
   if (window_start) *window_start = full_window ? start : strain.size();
   if (!full_window || last < options.critical_min_strain) return false;
   return std::abs(fitted_change(strain, eta, start)) < options.critical_eta_change &&
-         std::abs(fitted_change(strain, volume, start)) < options.critical_volume_change;
+         std::abs(fitted_change(strain, second, start)) < second_tolerance;
+}
+
+}  // namespace
+
+const std::vector<std::string>& triaxial_series_names() { return kSeriesNames; }
+
+bool is_critical_state(const std::vector<double>& strain, const std::vector<double>& eta,
+                       const std::vector<double>& volume, const TriaxialOptions& options,
+                       std::size_t* window_start) {
+  return stationary_over_window(strain, eta, volume, options.critical_volume_change, options,
+                                window_start);
+}
+
+bool is_critical_state_at_constant_volume(const std::vector<double>& strain,
+                                          const std::vector<double>& eta,
+                                          const std::vector<double>& mean_stress_ratio,
+                                          const TriaxialOptions& options,
+                                          std::size_t* window_start) {
+  return stationary_over_window(strain, eta, mean_stress_ratio,
+                                options.critical_mean_stress_change, options, window_start);
 }
 
 std::string TriaxialOptions::validate() const {
@@ -81,6 +101,13 @@ std::string TriaxialOptions::validate() const {
   if (!(critical_window > 0.0)) e << "critical_window must be positive; ";
   if (!(critical_eta_change > 0.0)) e << "critical_eta_change must be positive; ";
   if (!(critical_volume_change > 0.0)) e << "critical_volume_change must be positive; ";
+  if (!(critical_mean_stress_change > 0.0)) e << "critical_mean_stress_change must be positive; ";
+  if (uses_b(path)) {
+    if (!(b >= 0.0 && b <= 1.0)) e << "b must lie in [0, 1] (got " << b << "); ";
+  } else if (b != 0.0) {
+    e << "b = " << b << " is read only by path = \"true_triaxial\", not \""
+      << loading_path_name(path) << "\"; ";
+  }
   return e.str();
 }
 
@@ -102,11 +129,13 @@ TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& option
   mean_density_ = totals.mass / totals.solid_volume;
   mean_diameter_ = totals.mean_diameter;
 
+  direction_ = axial_direction(options_.path);
   for (int axis = 0; axis < 2; ++axis)
     for (bool upper : {false, true}) {
       Wall& w = sim_.walls()[sim_.box_wall(axis, upper)];
-      w.mode = WallMode::kStress;
+      w.mode = holds_volume(options_.path) ? WallMode::kVelocity : WallMode::kStress;
       w.target_stress = options_.confining_stress;
+      w.velocity = 0.0;
     }
   drive_platens();
   const double steps_needed = options_.max_axial_strain / (options_.strain_rate * sim_.time_step());
@@ -153,13 +182,50 @@ GrainTotals grain_totals(const Particles& p) {
 }
 
 void TriaxialTest::drive_platens() {
-  // The strain rate refers to the initial height: constant platen speed.
-  const double platen_speed = 0.5 * options_.strain_rate * height0_;
+  // The strain rate refers to the initial height: constant platen speed, closing in compression
+  // and parting in extension.
+  const double platen_speed = 0.5 * direction_ * options_.strain_rate * height0_;
   Wall& bottom = sim_.walls()[sim_.box_wall(2, false)];
   Wall& top = sim_.walls()[sim_.box_wall(2, true)];
   bottom.mode = top.mode = WallMode::kVelocity;
   bottom.velocity = platen_speed;
   top.velocity = -platen_speed;
+}
+
+void TriaxialTest::update_lateral_walls() {
+  auto& walls = sim_.walls();
+  if (holds_volume(options_.path)) {
+    // Each lateral width set, at the end of the coming step, to the one that keeps the volume
+    // with the height the platens will have then: V = V0 to rounding at every step.
+    const double dt = sim_.time_step();
+    const Wall& bottom = walls[sim_.box_wall(2, false)];
+    const Wall& top = walls[sim_.box_wall(2, true)];
+    const double height_next =
+        (top.position + top.velocity * dt) - (bottom.position + bottom.velocity * dt);
+    for (int axis = 0; axis < 2; ++axis) {
+      Wall& lower = walls[sim_.box_wall(axis, false)];
+      Wall& upper = walls[sim_.box_wall(axis, true)];
+      const double width = upper.position - lower.position;
+      const double target = constant_volume_width(width0_[axis], height0_, height_next);
+      const double speed = 0.5 * (target - width) / dt;
+      lower.velocity = -speed;
+      upper.velocity = speed;
+    }
+    return;
+  }
+  const std::array<double, 2> targets =
+      lateral_targets(options_.path, options_.confining_stress, options_.b, sim_.wall_stress(2));
+  for (int axis = 0; axis < 2; ++axis) {
+    if (!(targets[axis] > 0.0)) {
+      std::ostringstream msg;
+      msg << "triaxial: path " << loading_path_name(options_.path) << " asks for a lateral stress of "
+          << targets[axis] << " Pa on axis " << "xy"[axis] << " at an axial stress of "
+          << sim_.wall_stress(2) << " Pa: the specimen cannot keep p0 = "
+          << options_.confining_stress << " Pa at this q";
+      throw std::runtime_error(msg.str());
+    }
+    for (bool upper : {false, true}) walls[sim_.box_wall(axis, upper)].target_stress = targets[axis];
+  }
 }
 
 double TriaxialTest::axial_strain() const {
@@ -178,13 +244,15 @@ std::vector<double> TriaxialTest::series_row() const {
   const double sxx = sim_.wall_stress(0), syy = sim_.wall_stress(1), szz = sim_.wall_stress(2);
   const double s1 = szz, s3 = 0.5 * (sxx + syy);
   const double p = (s1 + 2.0 * s3) / 3.0, q = s1 - s3;
+  // Against each servo-held wall's own target (the path's); 0 where the walls are kinematic.
   double lateral_error = 0.0;
   for (int axis = 0; axis < 2; ++axis)
     for (bool upper : {false, true}) {
       const int w = sim_.box_wall(axis, upper);
+      if (walls[w].mode != WallMode::kStress) continue;
       const double stress = sim_.wall_forces()[w] / sim_.wall_area(w);
-      lateral_error = std::max(lateral_error, std::abs(stress - options_.confining_stress) /
-                                                  options_.confining_stress);
+      lateral_error = std::max(lateral_error, std::abs(stress - walls[w].target_stress) /
+                                                  walls[w].target_stress);
     }
   const Eigen::Matrix3d c = sim_.contact_stress(false);
   const double cp = c.trace() / 3.0, cq = c(2, 2) - 0.5 * (c(0, 0) + c(1, 1));
@@ -203,6 +271,14 @@ std::vector<double> TriaxialTest::series_row() const {
           walls[sim_.box_wall(0, false)].position, walls[sim_.box_wall(0, true)].position,
           walls[sim_.box_wall(1, false)].position, walls[sim_.box_wall(1, true)].position,
           walls[sim_.box_wall(2, false)].position, walls[sim_.box_wall(2, true)].position};
+}
+
+bool TriaxialTest::critical_state(std::size_t* window_start) const {
+  return holds_volume(options_.path)
+             ? is_critical_state_at_constant_volume(history_strain_, history_eta_,
+                                                    history_mean_stress_, options_, window_start)
+             : is_critical_state(history_strain_, history_eta_, history_volume_, options_,
+                                 window_start);
 }
 
 CheckpointExtras TriaxialTest::extras() const {
@@ -247,18 +323,29 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     drive_platens();
     if (file) {
       history_strain_ = file->series("axial_strain");
+      for (double& e : history_strain_) e *= direction_;
       history_eta_ = file->series("eta");
       history_volume_ = file->series("volumetric_strain");
+      history_mean_stress_ = file->series("p");
+      for (double& p : history_mean_stress_) p /= options_.confining_stress;
     }
   }
+  // The paths whose lateral walls follow the platens or the axial stress are set step by step;
+  // on the others the lateral servo targets stay put and the steps run in batches.
+  const bool step_by_step =
+      holds_volume(options_.path) || lateral_targets_follow_axial_stress(options_.path);
   // The first row needs the wall forces of a step taken with the platens moving.
-  if (!resumed) sim_.step();
+  if (!resumed) {
+    if (step_by_step) update_lateral_walls();
+    sim_.step();
+  }
   const double platen_speed = 0.5 * options_.strain_rate * height0_;
   TriaxialSummary summary;
   for (;;) {
-    // The time step follows the contacts, so the strain of one step is read afresh.
+    // The time step follows the contacts, so the strain of one step is read afresh. Strains here
+    // are |eps_a| along the path (eps_a < 0 in extension).
     const double strain_per_step = 2.0 * platen_speed * sim_.time_step() / height0_;
-    const double strain = axial_strain();
+    const double strain = path_strain();
     // The steps run towards the next row, never past the strain limit: the last row is taken at
     // max_axial_strain whatever the output interval (an interval of 1 must not crush the
     // specimen to eps_a = 1).
@@ -269,7 +356,12 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       const double remaining = (target - strain) / strain_per_step;
       const auto steps = static_cast<std::int64_t>(
           std::ceil(remaining > 2.0 ? 0.5 * remaining : remaining - 1e-9));
-      sim_.run(std::max<std::int64_t>(1, steps));
+      if (step_by_step) {
+        update_lateral_walls();
+        sim_.step();
+      } else {
+        sim_.run(std::max<std::int64_t>(1, steps));
+      }
       continue;
     }
     // An output step.
@@ -280,21 +372,21 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     const double eta = row[column("eta")], eps_v = row[column("volumetric_strain")];
     worst_lateral_error_ = std::max(worst_lateral_error_, row[column("lateral_stress_error")]);
     max_inertial_number_ = std::max(max_inertial_number_, row[column("inertial_number")]);
-    if (eta > peak_eta_) {
+    if (direction_ * eta > direction_ * peak_eta_) {  // in extension the peak is the most negative
       peak_eta_ = eta;
-      peak_eta_strain_ = strain;
+      peak_eta_strain_ = axial_strain();
     }
     history_strain_.push_back(strain);
     history_eta_.push_back(eta);
     history_volume_.push_back(eps_v);
+    history_mean_stress_.push_back(row[column("p")] / options_.confining_stress);
 
     std::size_t window_start = 0;
-    const bool critical =
-        is_critical_state(history_strain_, history_eta_, history_volume_, options_, &window_start);
+    const bool critical = critical_state(&window_start);
     const bool done = critical || strain + 0.5 * strain_per_step >= options_.max_axial_strain;
 
     if (file && (strain >= next_snapshot_ || done)) {
-      file->write_snapshot(take_snapshot(sim_, strain));
+      file->write_snapshot(take_snapshot(sim_, axial_strain()));
       while (next_snapshot_ <= strain) next_snapshot_ += options_.snapshot_strain_interval;
     }
     if (file && strain >= next_checkpoint_ && !done) {
@@ -323,7 +415,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       const std::size_t from = window_start < history_eta_.size() ? window_start : 0;
       for (std::size_t k = from; k < history_eta_.size(); ++k) sum += history_eta_[k];
       summary.critical_eta = sum / static_cast<double>(history_eta_.size() - from);
-      summary.axial_strain = strain;
+      summary.axial_strain = axial_strain();
       break;
     }
   }

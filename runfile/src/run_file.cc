@@ -1,8 +1,10 @@
 #include "runfile/run_file.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -59,6 +61,32 @@ void write_physics(hid_t root, const RunPhysics& physics) {
                       std::string("youngs_modulus Pa, grain_density kg/m^3, the others 1"));
 }
 
+void write_loading(hid_t root, const LoadingRecord& loading) {
+  h5::Handle group = h5::create_group(root, "loading");
+  const hid_t g = group.get();
+  h5::write_attribute(g, "path", loading.path);
+  for (int axis = 0; axis < 3; ++axis)
+    h5::write_attribute(g, std::string("axis_") + "xyz"[axis], loading.axis_control[axis]);
+  h5::write_attribute(g, "strain_rate", loading.strain_rate);
+  h5::write_attribute(g, "confining_stress", loading.confining_stress);
+  h5::write_attribute(g, "b", loading.b);
+  h5::write_attribute(g, "units", std::string("strain_rate 1/s, confining_stress Pa, b 1"));
+}
+
+LoadingRecord read_loading(hid_t root) {
+  LoadingRecord loading;
+  if (!h5::exists(root, "loading")) return loading;
+  h5::Handle group = h5::open_group(root, "loading");
+  const hid_t g = group.get();
+  loading.path = h5::read_string_attribute(g, "path");
+  for (int axis = 0; axis < 3; ++axis)
+    loading.axis_control[axis] = h5::read_string_attribute(g, std::string("axis_") + "xyz"[axis]);
+  loading.strain_rate = h5::read_double_attribute(g, "strain_rate");
+  loading.confining_stress = h5::read_double_attribute(g, "confining_stress");
+  loading.b = h5::read_double_attribute(g, "b");
+  return loading;
+}
+
 RunPhysics read_physics(hid_t root) {
   h5::Handle group = h5::open_group(root, "physics");
   RunPhysics physics;
@@ -113,33 +141,45 @@ RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
   impl->path = path;
   impl->writable = true;
   impl->series_names = series_names;
-  impl->guard("create", [&] {
-    const h5::Handle access = h5::crash_safe_access_properties();
-    impl->file = h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
-                           "create the file (is the folder there and writable?)");
-    const hid_t root = impl->id();
-    h5::write_attribute(root, "schema_version", kSchemaVersion);
-    h5::write_attribute(root, "program", std::string("sffcal"));
-    h5::write_attribute(root, "program_version", metadata.program_version);
-    h5::write_attribute(root, "kind", metadata.kind);
-    h5::write_attribute(root, "seed", static_cast<std::int64_t>(metadata.seed));
-    h5::write_attribute(root, "config", metadata.config_text);
-    h5::write_attribute(root, "units", std::string(kUnits));
-    h5::write_attribute(root, "sign_convention", std::string(kSignConvention));
-    write_physics(root, metadata.physics);
-    h5::Handle series = h5::create_group(root, "series");
-    std::string joined;
-    for (const std::string& name : series_names) {
-      h5::create_extendible(series.get(), name);
-      joined += (joined.empty() ? "" : ",") + name;
-    }
-    h5::write_attribute(series.get(), "columns", joined);
-    h5::create_group(root, "snapshots");
-    return 0;
-  });
-  RunFile file(std::move(impl));
-  file.flush();
-  return file;
+  // Made under a temporary name and renamed once whole and flushed: a run killed while the
+  // file is being made leaves no half-made file under the name (only PATH.partial).
+  const std::string partial = path + ".partial";
+  try {
+    impl->guard("create", [&] {
+      const h5::Handle access = h5::crash_safe_access_properties();
+      impl->file = h5::check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
+                             "create the file (is the folder there and writable?)");
+      const hid_t root = impl->id();
+      h5::write_attribute(root, "schema_version", kSchemaVersion);
+      h5::write_attribute(root, "program", std::string("sffcal"));
+      h5::write_attribute(root, "program_version", metadata.program_version);
+      h5::write_attribute(root, "kind", metadata.kind);
+      h5::write_attribute(root, "seed", static_cast<std::int64_t>(metadata.seed));
+      h5::write_attribute(root, "config", metadata.config_text);
+      h5::write_attribute(root, "units", std::string(kUnits));
+      h5::write_attribute(root, "sign_convention", std::string(kSignConvention));
+      write_physics(root, metadata.physics);
+      if (!metadata.loading.path.empty()) write_loading(root, metadata.loading);
+      h5::Handle series = h5::create_group(root, "series");
+      std::string joined;
+      for (const std::string& name : series_names) {
+        h5::create_extendible(series.get(), name);
+        joined += (joined.empty() ? "" : ",") + name;
+      }
+      h5::write_attribute(series.get(), "columns", joined);
+      h5::create_group(root, "snapshots");
+      impl->flush();
+      if (std::rename(partial.c_str(), path.c_str()) != 0)
+        throw std::runtime_error("cannot rename " + partial + " to " + path + ": " +
+                                 std::strerror(errno));
+      return 0;
+    });
+  } catch (...) {
+    impl->file = h5::Handle();
+    std::remove(partial.c_str());
+    throw;
+  }
+  return RunFile(std::move(impl));
 }
 
 RunFile RunFile::open(const std::string& path, bool writable) {
@@ -178,6 +218,7 @@ RunMetadata RunFile::metadata() const {
     m.seed = static_cast<std::uint64_t>(h5::read_int_attribute(impl_->id(), "seed"));
     m.program_version = h5::read_string_attribute(impl_->id(), "program_version");
     m.schema_version = impl_->schema_version;
+    m.loading = read_loading(impl_->id());
     m.physics = impl_->schema_version >= 2
                     ? read_physics(impl_->id())
                     : physics_from_config_text(m.config_text, impl_->path + " (stored config)");

@@ -1,7 +1,9 @@
-// Drained triaxial compression: lateral walls servo-held at sigma_3, platens (z walls) driven
-// together at a constant strain rate until the critical state or a maximum axial strain.
+// Triaxial-cell tests along a loading path (loading_path.h): the platens (z walls) driven at a
+// constant strain rate, the lateral walls servo-held at the path's stresses or moved at constant
+// volume, until the critical state or a maximum axial strain. Drained compression (sigma_3 held,
+// platens closing) is the paper's test and the default.
 // Strains are engineering strains from the wall positions, compression positive:
-// eps_a = (H0 - H) / H0, eps_x = (W0 - W) / W0, eps_v = (V0 - V) / V0.
+// eps_a = (H0 - H) / H0, eps_x = (W0 - W) / W0, eps_v = (V0 - V) / V0 (eps_a < 0 in extension).
 #pragma once
 
 #include <cstdint>
@@ -9,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/loading_path.h"
 #include "dem/run_file_io.h"
 #include "dem/simulation.h"
 
@@ -20,11 +23,15 @@ constexpr double kMinStrainInterval = 1e-9;
 constexpr double kMaxTestSteps = 1e9;
 
 struct TriaxialOptions {
-  double confining_stress = 100e3;   ///< sigma_3 held on the lateral walls [Pa]
+  LoadingPath path = LoadingPath::kDrainedCompression;
+  /// sigma_3 held on the lateral walls on the drained paths, p0 on the constant-p ones [Pa]
+  double confining_stress = 100e3;
+  /// True triaxial: (sigma_2 - sigma_3) / (sigma_1 - sigma_3) in [0, 1], sigma_2 on y; 0 elsewhere.
+  double b = 0.0;
   /// Axial strain rate [1/s]. The paper: 20 /s (0.06 m/s on 3 mm); 100 /s stays within the seed
   /// scatter of it at 100 kPa (bench/RESULTS.md, "Run time against error"): keep I < 1e-3 elsewhere.
   double strain_rate = 100.0;
-  double max_axial_strain = 0.45;    ///< stop here if no critical state was found
+  double max_axial_strain = 0.45;    ///< stop at this |eps_a| if no critical state was found
   double output_strain_interval = 2e-3;    ///< a /series row every this much axial strain
   double snapshot_strain_interval = 0.05;  ///< a snapshot every this much axial strain
   double checkpoint_strain_interval = 0.02;  ///< a checkpoint every this much axial strain
@@ -35,6 +42,9 @@ struct TriaxialOptions {
   double critical_window = 0.1;
   double critical_eta_change = 0.05;
   double critical_volume_change = 0.005;
+  /// On the undrained paths (no volume change) the mean stress takes the volume's place: its
+  /// line through p / p0 must change by less than this.
+  double critical_mean_stress_change = 0.05;
   double critical_min_strain = 0.2;
 
   std::string validate() const;
@@ -55,12 +65,19 @@ struct TriaxialProgress {
 /// The names of the /series columns a triaxial run writes, in order.
 const std::vector<std::string>& triaxial_series_names();
 
-/// The critical-state test of TriaxialOptions on the history so far (axial strain, q/p and
+/// The critical-state test of TriaxialOptions on the history so far (|axial strain|, q/p and
 /// volumetric strain at each output row). `window_start`, when given, receives the index of the
 /// first row of the last window (the size of the history when no full window exists yet).
 bool is_critical_state(const std::vector<double>& axial_strain, const std::vector<double>& eta,
                        const std::vector<double>& volumetric_strain,
                        const TriaxialOptions& options, std::size_t* window_start = nullptr);
+/// The same on an undrained path: the line through p / p0 in place of the volumetric strain's,
+/// against critical_mean_stress_change.
+bool is_critical_state_at_constant_volume(const std::vector<double>& axial_strain,
+                                          const std::vector<double>& eta,
+                                          const std::vector<double>& mean_stress_ratio,
+                                          const TriaxialOptions& options,
+                                          std::size_t* window_start = nullptr);
 
 /// Totals of the grains that a test divides by: summed in the order of the bodies' stable ids,
 /// so that they are the same to the last bit whatever order the engine's spatial re-sorts left
@@ -92,8 +109,13 @@ class TriaxialTest {
 
  private:
   double axial_strain() const;
+  double path_strain() const { return direction_ * axial_strain(); }  ///< |eps_a| along the path
   double void_ratio() const;
   void drive_platens();
+  /// Sets the lateral walls for the next step: the path's stress targets, or the velocities that
+  /// keep the volume (undrained).
+  void update_lateral_walls();
+  bool critical_state(std::size_t* window_start) const;
   CheckpointExtras extras() const;
 
   Simulation& sim_;
@@ -103,7 +125,9 @@ class TriaxialTest {
   double next_output_ = 0.0, next_snapshot_ = 0.0, next_checkpoint_ = 0.0;
   double worst_lateral_error_ = 0.0, peak_eta_ = 0.0, peak_eta_strain_ = 0.0;
   double max_inertial_number_ = 0.0, initial_void_ratio_ = 0.0;
-  std::vector<double> history_strain_, history_eta_, history_volume_;
+  int direction_ = 1;  ///< axial_direction(options_.path)
+  /// Per output row: |eps_a|, q/p, eps_v and p / p0 (the critical-state test).
+  std::vector<double> history_strain_, history_eta_, history_volume_, history_mean_stress_;
 };
 
 }  // namespace dem

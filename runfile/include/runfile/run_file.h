@@ -6,6 +6,8 @@
 //                     config (the full config text), units, sign_convention
 //   /physics          attributes: the run's physical constants (RunPhysics), SI      [schema 2]
 //   /summary          attributes: how the test ended (TestSummary)                   [schema 2]
+//   /loading          attributes: the test's loading path and axis controls (LoadingRecord);
+//                     absent from a specimen file and from files before it (drained compression)
 //   /series/<name>    one extendible 1-D float64 dataset per scalar history, all one length
 //   /snapshots/<nnnnnn>/  attributes step, time, axial_strain; datasets
 //                     particles (compound ParticleRecord), spheres (N_s x 4: x, y, z, radius),
@@ -47,12 +49,24 @@ struct RunPhysics {
   double density_scaling = 1.0;  ///< mass scaling of the run (>= 1)
 };
 
+/// How a test loads the specimen (stored as attributes of /loading): the path's name (the DEM's
+/// config spelling, e.g. "undrained_extension") and, in words, what holds each axis.
+struct LoadingRecord {
+  std::string path;
+  std::array<std::string, 3> axis_control;  ///< x, y, z
+  double strain_rate = 0.0;       ///< of the platens [1/s], > 0 (the direction is in the path)
+  double confining_stress = 0.0;  ///< sigma_3, or p0 on the constant-p paths [Pa]
+  double b = 0.0;                 ///< (sigma_2 - sigma_3) / (sigma_1 - sigma_3) (true triaxial)
+};
+
 struct RunMetadata {
   std::string kind;             ///< "triaxial", "specimen", ...
   std::string config_text;      ///< the full configuration the run was made with
   std::uint64_t seed = 0;
   std::string program_version;
   RunPhysics physics = {};
+  /// A test's loading (written when `path` is not empty; read back empty where /loading is absent).
+  LoadingRecord loading = {};
   std::int64_t schema_version = kSchemaVersion;  ///< of the file it was read from
 };
 

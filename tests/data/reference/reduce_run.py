@@ -49,7 +49,7 @@ def main():
                          "dropped" % (os.path.basename(args.source), kept, len(src["snapshots"])),
                          dtype=h5py.string_dtype("utf-8"))
         src.copy("series", dst)  # keeps chunking, filters, maxshape and the columns attribute
-        for group in ("physics", "summary"):  # schema 2 (schema 1 has neither)
+        for group in ("physics", "loading", "summary"):  # where present (schema 2)
             if group in src:
                 src.copy(group, dst)
         snapshots = dst.create_group("snapshots")

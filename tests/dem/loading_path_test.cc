@@ -1,0 +1,152 @@
+// The loading paths of the triaxial driver (issue 18): their controls against the analytic
+// constraints each path imposes (constant volume, constant p, the b ratio, sigma_3), on a small
+// specimen, and the names and contradictions refused.
+#include "dem/loading_path.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <string>
+
+#include "dem/run_config.h"
+#include "dem/triaxial.h"
+#include "specimen_fixture.h"
+
+namespace dem {
+namespace {
+
+TEST(LoadingPath, NamesRoundTripAndAnUnknownOneIsRefusedNamingTheOthers) {
+  for (const std::string& name : loading_path_names())
+    EXPECT_EQ(loading_path_name(parse_loading_path(name)), name);
+  try {
+    parse_loading_path("sideways");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("\"sideways\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"undrained_extension\""), std::string::npos) << e.what();
+  }
+  std::string text = default_run_config_text();
+  text.replace(text.find("path = \"drained_compression\""), 29, "path = \"sideways\"");
+  try {
+    parse_run_config(text, "t.toml");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("t.toml: triaxial.path: unknown loading path"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(LoadingPath, ContradictoryOrOutOfRangeBIsRefusedByName) {
+  TriaxialOptions options;
+  options.b = 0.3;  // drained compression does not read b
+  EXPECT_NE(options.validate().find("read only by path = \"true_triaxial\""), std::string::npos)
+      << options.validate();
+  options.path = LoadingPath::kTrueTriaxial;
+  EXPECT_EQ(options.validate(), "");
+  options.b = 1.5;
+  EXPECT_NE(options.validate().find("b must lie in [0, 1]"), std::string::npos);
+}
+
+// The targets keep p = p0 and (sigma_y - sigma_x) = b (sigma_z - sigma_x), for any axial stress.
+TEST(LoadingPath, LateralTargetsKeepTheMeanStressAndB) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> axial(1e5, 3e5), ratio(0.0, 1.0);
+  const double p0 = 1e5;
+  for (int k = 0; k < 100; ++k) {
+    const double sz = axial(rng), b = ratio(rng);
+    const auto t = lateral_targets(LoadingPath::kTrueTriaxial, p0, b, sz);
+    EXPECT_NEAR((t[0] + t[1] + sz) / 3.0, p0, 1e-9);
+    EXPECT_NEAR((t[1] - t[0]) / (sz - t[0]), b, 1e-12);
+    const auto c = lateral_targets(LoadingPath::kConstantPCompression, p0, 0.0, sz);
+    EXPECT_EQ(c[0], c[1]);
+    EXPECT_NEAR((2.0 * c[0] + sz) / 3.0, p0, 1e-9);
+    const auto d = lateral_targets(LoadingPath::kDrainedExtension, p0, 0.0, sz);
+    EXPECT_EQ(d[0], p0);
+    EXPECT_EQ(d[1], p0);
+  }
+  for (double h : {0.5, 0.9, 1.0, 1.3})
+    EXPECT_NEAR(std::pow(constant_volume_width(2.0, 1.0, h), 2) * h, 4.0, 1e-12);
+}
+
+struct PathRun {
+  std::map<std::string, std::vector<double>> rows;
+  TriaxialSummary summary;
+};
+
+PathRun run_path(const Simulation& specimen, LoadingPath path, double b) {
+  Simulation sim = testing::shearing_copy(specimen);
+  TriaxialOptions options;
+  options.path = path;
+  options.b = b;
+  options.max_axial_strain = 0.02;
+  options.output_strain_interval = 0.001;
+  options.critical_min_strain = 1.0;
+  TriaxialTest test(sim, options);
+  PathRun run;
+  run.summary = test.run(nullptr, [&](const TriaxialProgress&) {
+    const std::vector<double> row = test.series_row();
+    const auto& names = triaxial_series_names();
+    for (std::size_t k = 0; k < names.size(); ++k) run.rows[names[k]].push_back(row[k]);
+  });
+  return run;
+}
+
+// Each path on one dense specimen of 60 clumps at 100 kPa, to 2 % of axial strain.
+TEST(LoadingPath, EachPathHoldsWhatItPrescribes) {
+  const Simulation specimen = testing::compacted_specimen(60, 0.0, 4);
+  const double p0 = 1e5;
+  for (const LoadingPath path : {LoadingPath::kUndrainedCompression, LoadingPath::kUndrainedExtension}) {
+    const PathRun run = run_path(specimen, path, 0.0);
+    const auto& ev = run.rows.at("volumetric_strain");
+    const double worst = std::max(std::abs(*std::max_element(ev.begin(), ev.end())),
+                                  std::abs(*std::min_element(ev.begin(), ev.end())));
+    EXPECT_LT(worst, 1e-12) << loading_path_name(path);  // the volume to rounding
+    EXPECT_NEAR(run.rows.at("axial_strain").back(), axial_direction(path) * 0.02, 1e-4);
+    // A dense specimen that cannot dilate: the mean effective stress climbs.
+    EXPECT_GT(run.rows.at("p").back(), 1.5 * p0) << loading_path_name(path);
+    EXPECT_GT(axial_direction(path) * run.rows.at("q").back(), 0.0);
+  }
+  {
+    const PathRun run = run_path(specimen, LoadingPath::kDrainedExtension, 0.0);
+    EXPECT_NEAR(run.rows.at("axial_strain").back(), -0.02, 1e-4);
+    EXPECT_LT(run.rows.at("q").back(), -0.3 * p0);
+    EXPECT_LT(run.summary.peak_eta, -0.5);  // the peak of an extension test is its most negative
+    for (const char* wall : {"wall_stress_xx", "wall_stress_yy"})
+      EXPECT_NEAR(run.rows.at(wall).back(), p0, 0.03 * p0) << wall;
+  }
+  for (const double b : {0.0, 0.5}) {
+    const LoadingPath path = b == 0.0 ? LoadingPath::kConstantPCompression : LoadingPath::kTrueTriaxial;
+    const PathRun run = run_path(specimen, path, b);
+    const auto& strain = run.rows.at("axial_strain");
+    for (std::size_t k = 0; k < strain.size(); ++k) {
+      if (strain[k] < 0.005) continue;  // the servo's first 0.5 %
+      EXPECT_NEAR(run.rows.at("p")[k], p0, 0.02 * p0) << loading_path_name(path) << " row " << k;
+      const double sx = run.rows.at("wall_stress_xx")[k], sy = run.rows.at("wall_stress_yy")[k],
+                   sz = run.rows.at("wall_stress_zz")[k];
+      EXPECT_NEAR((sy - sx) / (sz - sx), b, 0.05) << loading_path_name(path) << " row " << k;
+    }
+    EXPECT_GT(run.rows.at("q").back(), 0.5 * p0);
+  }
+}
+
+// On a constant-volume path the mean stress takes the volume's place in the critical-state test.
+TEST(LoadingPath, UndrainedCriticalStateAsksForAStationaryMeanStress) {
+  TriaxialOptions options;
+  options.critical_min_strain = 0.2;
+  std::vector<double> strain, eta, p_flat, p_rising;
+  for (int k = 0; k <= 150; ++k) {
+    strain.push_back(0.002 * k);
+    eta.push_back(1.2);
+    p_flat.push_back(2.0);
+    p_rising.push_back(2.0 + 2.0 * strain.back());  // +0.2 of p0 over the window
+  }
+  EXPECT_TRUE(is_critical_state_at_constant_volume(strain, eta, p_flat, options));
+  EXPECT_FALSE(is_critical_state_at_constant_volume(strain, eta, p_rising, options));
+}
+
+}  // namespace
+}  // namespace dem
