@@ -39,6 +39,9 @@ struct DemRun {
 
 DemRun read_dem_run(const std::string& path, double a_cs) {
   const runfile::DemTest test = runfile::read_dem_test(path);
+  if (test.loading_path() != "drained_compression")
+    throw std::runtime_error(path + ": loading path " + test.loading_path() +
+                             ": fe-check compares drained compression only");
   const runfile::DemTestSeries& s = test.series;
   if (s.axial_strain.empty()) throw std::runtime_error(path + ": /series is empty");
   DemRun run;

@@ -87,6 +87,10 @@ void fill_from_tables(TestData& t, const std::map<std::string, std::vector<doubl
 
 TestData read_run_file(const std::string& path) {
   const runfile::DemTest dem = runfile::read_dem_test(path);
+  if (dem.loading_path() != "drained_compression")
+    throw std::runtime_error("run file '" + path + "': loading path " + dem.loading_path() +
+                             ": the calibration fits drained compression only (the other paths "
+                             "are issue 19's)");
   if (!dem.analysed)
     throw std::runtime_error("run file '" + path +
                              "' has no SFF table /analysis/sff (run `sffcal sff " + path +

@@ -305,6 +305,18 @@ TEST(FitInputs, FrictionIsTheOneTheDemShearedWith) {
   std::filesystem::remove(path);
 }
 
+// The fits read drained compression; a run of another loading path is refused by its name, not
+// fitted as if it were one (issue 18).
+TEST(FitInputs, ARunOfAnotherLoadingPathIsRefusedByName) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "calibration_fit_test_path.h5").string();
+  const dem::RunConfig undrained =
+      dem::parse_run_config("[triaxial]\npath = \"undrained_compression\"\n");
+  write_small_run(path, dem::run_metadata("triaxial", undrained, "test"), true);
+  expect_error([&] { read_run_file(path); }, "loading path undrained_compression: the calibration fits drained");
+  std::filesystem::remove(path);
+}
+
 TEST(FitInputs, MissingCsvColumnIsNamed) {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string series = (dir / "calibration_fit_test_series.csv").string();

@@ -32,6 +32,11 @@ struct DemTest {
   DemTestSeries series;
   bool analysed = false;  ///< true when the file has an SFF table (then `sff` is filled)
   DemTestSff sff;
+
+  /// The loading path's name; files without /loading are drained compression.
+  std::string loading_path() const {
+    return metadata.loading.path.empty() ? "drained_compression" : metadata.loading.path;
+  }
 };
 
 /// Reads a triaxial run file. Throws std::runtime_error naming the file and the dataset when a
