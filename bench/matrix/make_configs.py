@@ -5,7 +5,9 @@ usage: make_configs.py OUT_FOLDER [--bodies N] [--seed S] [--only NAME_SUBSTRING
 
 Isotropic specimens: three densities (compaction friction 0.15 dense, 0.3 medium, 0.5 loose)
 x p'0 = 100, 200, 300 kPa. Anisotropic specimens: gravity deposition, dense and loose, loading
-angle 0, 30, 45, 60, 90 deg, at 100 kPa. Every config starts from examples/quick_triaxial.toml
+angle 0, 30, 45, 60, 90 deg, at 100 kPa. All drained compression; then the other loading paths
+(issue 18): undrained compression and drained extension, dense and loose, at 100 and 200 kPa;
+true triaxial at b = 0.5, dense, 100 kPa; drained extension of the dense deposit at 45 deg. Every config starts from examples/quick_triaxial.toml
 and changes only the keys below; the seed is the same for all (the density, pressure and angle
 are what differ).
 """
@@ -30,6 +32,17 @@ def matrix():
         for angle in (0, 30, 45, 60, 90):
             yield f"dep_{density}_a{angle:02d}", {"method": '"deposition"', "loading_angle_deg": float(angle),
                                                  "compaction_friction": DENSITIES[density], "pressure": 1e5}
+    for prefix, path in (("und", "undrained_compression"), ("ext", "drained_extension")):
+        for density in ("dense", "loose"):
+            for kpa in (100, 200):
+                yield f"{prefix}_{density}_{kpa}kPa", {
+                    "method": '"compaction"', "compaction_friction": DENSITIES[density],
+                    "pressure": kpa * 1e3, "path": f'"{path}"'}
+    yield "tt_dense_100kPa_b05", {"method": '"compaction"', "compaction_friction": DENSITIES["dense"],
+                                  "pressure": 1e5, "path": '"true_triaxial"', "b": 0.5}
+    yield "dep_dense_a45_ext", {"method": '"deposition"', "loading_angle_deg": 45.0,
+                                "compaction_friction": DENSITIES["dense"], "pressure": 1e5,
+                                "path": '"drained_extension"'}
 
 
 def set_key(text, key, value):

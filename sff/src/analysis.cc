@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "force_moments.h"
+#include "sff/invariants.h"
 #include "sff/sff_equation.h"
 #include "sff/statistics.h"
 #include "sff/tensors.h"
@@ -159,10 +160,36 @@ const std::vector<std::string>& analysis_columns() {
     for (const char* t : {"stress", "fabric", "normal", "tangential", "mobilisation"})
       for (const char* f : {"_major", "_axis_x", "_axis_y", "_axis_z", "_tilt_deg"})
         n.push_back(std::string(t) + f);
+    // The general form (issue 18): each tensor whole, its invariants, its principal values and
+    // minor direction, its alignment with the stress and its triaxial scalar about the stress's
+    // major principal axis (tensor_general_row).
+    for (const char* t : {"stress", "fabric", "normal", "tangential", "mobilisation"})
+      for (const char* f : {"_xx", "_yy", "_zz", "_yz", "_xz", "_xy", "_magnitude", "_lode_deg",
+                            "_value_1", "_value_2", "_value_3", "_minor_axis_x", "_minor_axis_y",
+                            "_minor_axis_z", "_alignment", "_about_stress_axis"})
+        n.push_back(std::string(t) + f);
     return n;
   }();
   return names;
 }
+
+namespace {
+
+// The general-form columns of one tensor T (analysis_columns): T's components, sqrt(3/2 T':T'),
+// its Lode angle, principal values, minor direction, alignment with the stress and the triaxial
+// scalar about the stress's major principal direction `stress_axis`.
+void append_general_form(std::vector<double>& row, const Eigen::Matrix3d& t,
+                         const Eigen::Matrix3d& stress, const Eigen::Vector3d& stress_axis) {
+  const TensorInvariants inv = tensor_invariants(t);
+  Eigen::Vector3d minor = inv.directions.col(2);
+  if (minor.z() < 0.0) minor = -minor;
+  row.insert(row.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1), inv.magnitude,
+                         inv.lode_deg, inv.values[0], inv.values[1], inv.values[2], minor.x(),
+                         minor.y(), minor.z(), alignment(t, stress),
+                         triaxial_about(t, stress_axis)});
+}
+
+}  // namespace
 
 std::vector<double> analysis_row(const SnapshotAnalysis& a) {
   std::vector<double> row = {
@@ -173,6 +200,8 @@ std::vector<double> analysis_row(const SnapshotAnalysis& a) {
   for (const PrincipalAxis* p :
        {&a.stress_axis, &a.fabric_axis, &a.normal_axis, &a.tangential_axis, &a.mobilisation_axis})
     row.insert(row.end(), {p->major, p->axis.x(), p->axis.y(), p->axis.z(), p->tilt_deg});
+  for (const Eigen::Matrix3d* t : {&a.stress, &a.fabric, &a.normal, &a.tangential, &a.mobilisation})
+    append_general_form(row, *t, a.stress, a.stress_axis.axis);
   return row;
 }
 
