@@ -62,6 +62,16 @@ Handle create_group(hid_t location, const std::string& path) {
                "create group " + path);
 }
 
+Handle create_group(hid_t location, const std::string& path, std::size_t expected_links) {
+  Handle links = check(H5Pcreate(H5P_LINK_CREATE), "create a property list");
+  H5Pset_create_intermediate_group(links.get(), 1);
+  Handle group = check(H5Pcreate(H5P_GROUP_CREATE), "create a property list");
+  check_status(H5Pset_local_heap_size_hint(group.get(), 16 * expected_links),
+               "size the name heap of " + path);
+  return check(H5Gcreate2(location, path.c_str(), links.get(), group.get(), H5P_DEFAULT),
+               "create group " + path);
+}
+
 Handle create_unlinked_group(hid_t file) {
   return check(H5Gcreate_anon(file, H5P_DEFAULT, H5P_DEFAULT), "create a group");
 }
@@ -134,6 +144,13 @@ std::int64_t read_int_attribute(hid_t object, const std::string& name) {
   Handle attr = open_attribute(object, name);
   check_status(H5Aread(attr.get(), H5T_NATIVE_INT64, &value), "read attribute " + name);
   return value;
+}
+
+Handle crash_safe_creation_properties() {
+  Handle plist = check(H5Pcreate(H5P_FILE_CREATE), "create a property list");
+  check_status(H5Pset_sym_k(plist.get(), 16, 64), "set the symbol-table node sizes");
+  check_status(H5Pset_local_heap_size_hint(plist.get(), 1024), "size the root group's name heap");
+  return plist;
 }
 
 Handle crash_safe_access_properties() {

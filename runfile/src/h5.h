@@ -4,6 +4,7 @@
 
 #include <hdf5.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -46,10 +47,17 @@ void silence_errors();
 /// (docs/run-file.md, "A killed run"): metadata reaches the disk only at H5Fflush, never by an
 /// eviction between flushes, so the file on disk stays the one of the last flush until the next.
 Handle crash_safe_access_properties();
+/// The file-creation properties to go with them: the root group's name heap sized for its links
+/// and symbol-table leaves of 128 entries, so that linking a checkpoint, a summary or up to 128
+/// snapshots into an existing group changes it in place instead of moving it (a moved heap or a
+/// split node written before the superblock was a kill's last open window).
+Handle crash_safe_creation_properties();
 
 bool exists(hid_t location, const std::string& path);
 Handle open_group(hid_t location, const std::string& path);
 Handle create_group(hid_t location, const std::string& path);
+/// A group whose name heap has room for `expected_links` links of up to 15 characters.
+Handle create_group(hid_t location, const std::string& path, std::size_t expected_links);
 /// A group no path leads to yet: written and flushed whole before `link` makes it reachable.
 Handle create_unlinked_group(hid_t file);
 /// Links `object` at `path` under `location`, creating the missing intermediate groups.

@@ -110,6 +110,11 @@ struct RunFile::Impl {
   // one reaches the disk in a flush before any link to it, and the old one is unlinked in the
   // flush that writes the new link (docs/run-file.md, "A killed run").
   void publish(hid_t object, const std::string& where) const {
+    const std::size_t slash = where.rfind('/');
+    if (slash != std::string::npos && !h5::exists(id(), where.substr(0, slash))) {
+      const h5::Handle parent = h5::create_unlinked_group(id());  // e.g. /analysis, the first time
+      publish(parent.get(), where.substr(0, slash));
+    }
     flush();
     if (h5::exists(id(), where))
       h5::check_status(H5Ldelete(id(), where.c_str(), H5P_DEFAULT), "unlink the old " + where);
@@ -146,8 +151,9 @@ RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
   const std::string partial = path + ".partial";
   try {
     impl->guard("create", [&] {
+      const h5::Handle creation = h5::crash_safe_creation_properties();
       const h5::Handle access = h5::crash_safe_access_properties();
-      impl->file = h5::check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
+      impl->file = h5::check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()),
                              "create the file (is the folder there and writable?)");
       const hid_t root = impl->id();
       h5::write_attribute(root, "schema_version", kSchemaVersion);
@@ -167,7 +173,7 @@ RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
         joined += (joined.empty() ? "" : ",") + name;
       }
       h5::write_attribute(series.get(), "columns", joined);
-      h5::create_group(root, "snapshots");
+      h5::create_group(root, "snapshots", 1024);
       impl->flush();
       if (std::rename(partial.c_str(), path.c_str()) != 0)
         throw std::runtime_error("cannot rename " + partial + " to " + path + ": " +

@@ -8,7 +8,8 @@ Every case must end in one of two ways, within the time limit:
   - accepted: exit status 0, and what was written holds no NaN or inf (`sffcal info` on it).
 Never a signal (crash, abort, sanitizer), never a time-out, and the inputs are left as they were
 (except the run file a command is asked to update: `sff`, `--resume`).
-The mutations are drawn with a seed that is printed; a failing case is kept in the work folder
+A mutation that leaves a valid config asking for the defaults' long run (1000 clumps, 45 % of
+strain) is not bad input and is drawn again. The mutations are drawn with a seed that is printed; a failing case is kept in the work folder
 with its command (rerun with --keep FOLDER).
 
 Usage: fuzz_inputs.py SFFCAL [--cases N] [--seed S] [--timeout SECONDS] [--keep FOLDER]
@@ -23,6 +24,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import tomllib
 
 import h5py
 import numpy as np
@@ -77,6 +79,26 @@ def mutate_text(rng, text, values, key_pattern):
             i = rng.randrange(len(lines) + 1)
             lines.insert(i, garbage(rng))
     return "\n".join(lines)
+
+
+def asks_for_a_long_run(text):
+    """A mutated config that is still valid TOML but (a line or a table cut away, a value
+    raised) falls back to the defaults' 1000 clumps, 2e6 compaction steps or 45 % of strain, or
+    asks for as much, is a user's long run, not bad input: such draws are redrawn. A value of the
+    wrong type is bad input and stays."""
+    try:
+        config = tomllib.loads(text)
+    except (tomllib.TOMLDecodeError, UnicodeError, ValueError):
+        return False
+    def long(table, key, limit, valid_below):
+        value = config.get(table, {}).get(key) if table else config.get(key)
+        if value is None:
+            return True  # the default's
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            return False
+        return limit < value < valid_below
+    return (long(None, "bodies", 100, 1e7 + 1) or long("preparation", "max_steps", 1e5, 1e19)
+            or long("triaxial", "max_axial_strain", 0.01, 0.9))
 
 
 def mutate_csv(rng, text):
@@ -251,8 +273,11 @@ def main():
         label = f"case {case} ({kind})"
         if kind == "toml":
             path = os.path.join(folder, "config.toml")
+            text = mutate_text(rng, config, TOML_VALUES, r"^(\s*\w+\s*=\s*)")
+            while asks_for_a_long_run(text):
+                text = mutate_text(rng, config, TOML_VALUES, r"^(\s*\w+\s*=\s*)")
             with open(path, "w", errors="surrogateescape") as f:
-                f.write(mutate_text(rng, config, TOML_VALUES, r"^(\s*\w+\s*=\s*)"))
+                f.write(text)
             out = os.path.join(folder, "run.h5")
             fuzz.run(label, [sffcal, "dem", "-c", path, "-o", out], [path],
                      [out, out + ".specimen.h5"])
