@@ -81,8 +81,14 @@ bool is_critical_state_at_constant_volume(const std::vector<double>& strain,
                                           const std::vector<double>& mean_stress_ratio,
                                           const TriaxialOptions& options,
                                           std::size_t* window_start) {
-  return stationary_over_window(strain, eta, mean_stress_ratio,
-                                options.critical_mean_stress_change, options, window_start);
+  std::size_t start = 0;
+  const bool stationary = stationary_over_window(strain, eta, mean_stress_ratio,
+                                                 options.critical_mean_stress_change, options, &start);
+  if (window_start) *window_start = start;
+  // A specimen that lost its mean stress (static liquefaction) has no q/p to be critical at.
+  for (std::size_t k = start; k < mean_stress_ratio.size(); ++k)
+    if (!(mean_stress_ratio[k] >= kMinCriticalMeanStressRatio)) return false;
+  return stationary;
 }
 
 std::string TriaxialOptions::validate() const {

@@ -154,6 +154,9 @@ TEST(LoadingPath, UndrainedCriticalStateAsksForAStationaryMeanStress) {
   }
   EXPECT_TRUE(is_critical_state_at_constant_volume(strain, eta, p_flat, options));
   EXPECT_FALSE(is_critical_state_at_constant_volume(strain, eta, p_rising, options));
+  // Liquefied: p / p0 flat at 0.001 is stationary, but no critical state.
+  const std::vector<double> p_lost(strain.size(), 0.001);
+  EXPECT_FALSE(is_critical_state_at_constant_volume(strain, eta, p_lost, options));
 }
 
 }  // namespace

@@ -21,6 +21,9 @@ namespace dem {
 constexpr double kMinStrainInterval = 1e-9;
 /// The most steps a test may need at its strain rate (the paper-size test needs about 1e6).
 constexpr double kMaxTestSteps = 1e9;
+/// Below this p / p0 anywhere in the window an undrained test is not at a critical state but
+/// liquefied (q/p is then the noise of a few contacts).
+constexpr double kMinCriticalMeanStressRatio = 0.01;
 
 struct TriaxialOptions {
   LoadingPath path = LoadingPath::kDrainedCompression;
@@ -72,7 +75,8 @@ bool is_critical_state(const std::vector<double>& axial_strain, const std::vecto
                        const std::vector<double>& volumetric_strain,
                        const TriaxialOptions& options, std::size_t* window_start = nullptr);
 /// The same on an undrained path: the line through p / p0 in place of the volumetric strain's,
-/// against critical_mean_stress_change.
+/// against critical_mean_stress_change, and p / p0 at least kMinCriticalMeanStressRatio over the
+/// window.
 bool is_critical_state_at_constant_volume(const std::vector<double>& axial_strain,
                                           const std::vector<double>& eta,
                                           const std::vector<double>& mean_stress_ratio,
