@@ -47,7 +47,7 @@ def read_scene(path):
     except (OSError, tomllib.TOMLDecodeError) as e:
         raise StageFailed(f"scene {path}: {e}")
     known = [name for name, _ in MAKE_CONFIGS.matrix()]
-    for key in ("calibrate_on", "held_back"):
+    for key in ("calibrate_on", "held_back", "other_paths"):
         for name in scene.get(key, []):
             if name not in known:
                 raise StageFailed(f"scene {path}: {key} names '{name}', not a specimen of the matrix "
@@ -57,7 +57,8 @@ def read_scene(path):
     if scene.get("matrix") and (scene.get("dem") or scene.get("seed", 1) != 1):
         raise StageFailed(f"scene {path}: a matrix scene takes run_matrix.sh's configs as they are "
                           "(seed 1, no [dem] keys)")
-    scene["specimens"] = known if scene.get("matrix") else scene["calibrate_on"] + scene.get("held_back", [])
+    scene["specimens"] = known if scene.get("matrix") else (
+        scene["calibrate_on"] + scene.get("held_back", []) + scene.get("other_paths", []))
     return scene
 
 
@@ -80,10 +81,14 @@ class Pipeline:
         subprocess.run([PY, os.path.join(ROOT, "bench", "matrix", "make_configs.py"), folder,
                         "--bodies", str(self.scene.get("bodies", 400)),
                         "--seed", str(self.scene.get("seed", 1))], check=True, stdout=subprocess.DEVNULL)
+        dem = self.scene.get("dem", {})
         for name in self.scene["specimens"]:
             path = os.path.join(folder, name + ".toml")
             text = open(path).read()
-            for key, value in self.scene.get("dem", {}).items():
+            # the keys of every specimen, then those of a [dem.<specimen>] table
+            keys = [(k, v) for k, v in dem.items() if not isinstance(v, dict)] + \
+                list(dem.get(name, {}).items())
+            for key, value in keys:
                 try:
                     text = MAKE_CONFIGS.set_key(text, key, value)
                 except SystemExit as e:  # make_configs.py's own error: the key is unknown

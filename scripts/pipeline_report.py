@@ -76,10 +76,13 @@ def run_row(path, role):
         inertial = s["inertial_number"][:]
         config = f.attrs.get("config", "")
         config = config.decode() if isinstance(config, bytes) else config
+        path_name = f["loading"].attrs["path"] if "loading" in f else "drained_compression"
     bodies = re.search(r"^bodies\s*=\s*(\d+)", config, re.M)
-    last = eps_a >= eps_a[-1] - 0.05  # the last 5 % of axial strain
-    k = int(np.argmax(eta))
-    return (os.path.basename(path)[:-3], role, bodies.group(1) if bodies else "?", f"{sigma3[0] / 1e3:.0f}", f"{e[0]:.3f}",
+    strain = np.abs(eps_a)  # extension: eps_a < 0, q/p < 0, its peak the most negative
+    last = strain >= strain[-1] - 0.05  # the last 5 % of axial strain
+    k = int(np.argmax(np.abs(eta)))
+    return (os.path.basename(path)[:-3], role, path_name, bodies.group(1) if bodies else "?",
+            f"{sigma3[0] / 1e3:.0f}", f"{e[0]:.3f}",
             f"{eta[k]:.3f} at {100 * eps_a[k]:.1f} %", f"{eta[last].mean():.3f}", f"{e[last].mean():.3f}",
             f"{100 * eps_v[-1]:.1f}", f"{100 * eps_a[-1]:.1f}", f"{inertial.max():.1e}", f"{eta.min():.2f}")
 
@@ -126,13 +129,16 @@ def write_markdown(out, scene_path):
 
     page.add("## DEM triaxial tests",
              "Drained triaxial compression (σ3 held by the lateral servo walls, platens at a constant "
-             "strain rate). Peak and end q/p from the walls; end values are means over the last 5 % of "
-             "axial strain; ε_v compression positive; I = the largest inertial number (quasi-static below 1e-3).")
+             "strain rate) unless the path column says otherwise (docs/dem.md, \"Loading paths\": "
+             "undrained at constant volume, extension with the platens parting, ε_a and q/p < 0). "
+             "Peak (largest |q/p|) and end q/p from the walls; end values are means over the last 5 % of "
+             "|ε_a|; ε_v compression positive; I = the largest inertial number (quasi-static below 1e-3). "
+             "The calibration fits drained compression only.")
     if runs:
         rows = [run_row(r, role.get(os.path.basename(r)[:-3], "analysed only")) for r in runs]
-        page.table(["specimen", "role", "clumps", "σ3 [kPa]", "e0", "peak q/p", "end q/p", "end e",
+        page.table(["specimen", "role", "path", "clumps", "σ3 [kPa]", "e0", "peak q/p", "end q/p", "end e",
                     "end ε_v [%]", "end ε_a [%]", "max I", "min q/p"], rows)
-        unstable = [row[0] for row in rows if float(row[-1]) < -0.05]
+        unstable = [row[0] for row in rows if float(row[-1]) < -0.05 and "extension" not in row[2]]
         if unstable:
             page.add(f"**Note:** q/p falls below zero early in the shearing of {', '.join(unstable)} "
                      "(lateral stress above the axial one): most likely the packing is not stable once the "
