@@ -25,7 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kVerificationTolerance = 1e-8;
-const double kSqrtTwoThirds = std::sqrt(2.0 / 3.0);
 
 struct DemRun {
   std::string path;
@@ -73,7 +72,7 @@ DemRun read_dem_run(const std::string& path, double a_cs) {
       point.q = f.q[i];
       point.void_ratio = f.void_ratio[i];
       point.volumetric_strain = std::numeric_limits<double>::quiet_NaN();
-      point.fabric_invariant = kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
+      point.fabric_invariant = calibration::kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
       run.fabric.points.push_back(point);
       if (f.axial_strain[i] < f.axial_strain[first]) first = i;
     }
@@ -221,7 +220,7 @@ int fe_check_command(const FeCheckOptions& options) {
     const double f0 = c.specimen.fabric(2, 2) - 0.5 * (c.specimen.fabric(0, 0) +
                                                         c.specimen.fabric(1, 1));
     std::printf("\ncase %s: sigma_3 = %.4g kPa, e_0 = %.4g, F_0:n_c = %.4g (%s)\n", c.name.c_str(),
-                c.specimen.confining_pressure / 1e3, c.specimen.void_ratio, kSqrtTwoThirds * f0,
+                c.specimen.confining_pressure / 1e3, c.specimen.void_ratio, calibration::kSqrtTwoThirds * f0,
                 c.fabric_source.c_str());
     std::fflush(stdout);
 

@@ -46,7 +46,7 @@ Tensor<double> to_tensor(const Voigt& v) {
 bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double>& step,
                          const Unknowns<double>& x, Unknowns<double>& r, Jacobian& jacobian,
                          InputDerivatives* inputs) {
-  const double k = detail::kSqrtTwoThirds;
+  const double k = kSqrtTwoThirds;
   const Voigt sigma = x.segment<6>(0), alpha = x.segment<6>(6);
   const double dlambda = x(kMultiplier);
   const double e = step.void_ratio;
@@ -656,7 +656,7 @@ void project_sensitivity(const Parameters<double>& par, const State<double>& s, 
   const Matrix6 d_ratio = (y.stress - kDelta * dp - ratio * dp) / p;
   const Matrix6 dx = d_ratio - y.alpha;
   const Matrix6 dn_part = dx - n * (kWeights.cwiseProduct(n).transpose() * dx);
-  y.alpha = d_ratio - (detail::kSqrtTwoThirds * par.m / norm) * dn_part;
+  y.alpha = d_ratio - (kSqrtTwoThirds * par.m / norm) * dn_part;
 }
 
 // A converged backward-Euler step with the sensitivities carried along (implicit function

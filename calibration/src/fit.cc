@@ -17,7 +17,6 @@
 namespace calibration {
 
 using fit_detail::Grid;
-using fit_detail::kSqrtTwoThirds;
 using fit_detail::make_grid;
 using fit_detail::parameters_of;
 using fit_detail::ResidualSpec;

@@ -16,7 +16,6 @@
 namespace calibration {
 namespace fit_detail {
 
-inline const double kSqrtTwoThirds = std::sqrt(2.0 / 3.0);
 
 /// Model strain grid of one test: 0, then the selected series rows and the snapshots.
 struct Grid {

@@ -20,7 +20,6 @@
 namespace fe_model {
 namespace {
 
-const double kSqrtTwoThirds = std::sqrt(2.0 / 3.0);
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -90,7 +89,7 @@ Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters
     point.p = row.p;
     point.q = row.q;
     point.void_ratio = row.void_ratio;
-    point.fabric_invariant = kSqrtTwoThirds * row.fabric_triaxial;  // F : n_c
+    point.fabric_invariant = calibration::kSqrtTwoThirds * row.fabric_triaxial;  // F : n_c
     point.status = calibration::to_string(status);
     curve.points.push_back(point);
   };

@@ -349,7 +349,7 @@ void project_onto_cone(const Parameters<T>& par, State<T>& s) {
   const Tensor<T> x = ratio - s.alpha;
   const T squared = detail::contract(x, x);
   if (value_of(squared) > detail::kMinDirectionSquared)
-    s.alpha = ratio - (detail::kSqrtTwoThirds * par.m / sqrt(squared)) * x;
+    s.alpha = ratio - (kSqrtTwoThirds * par.m / sqrt(squared)) * x;
 }
 
 /// The state of a plastic step: the Richardson extrapolation of the whole step a and the two

@@ -9,9 +9,13 @@
 #include <type_traits>
 
 namespace calibration {
+
+/// sqrt(2/3): the radius of the critical and bounding cones per unit m (docs/model.md), and the
+/// factor from a triaxial scalar t(X) to X : n_c of an axisymmetric deviator (the fabric's).
+constexpr double kSqrtTwoThirds = 0.81649658092772603273;
+
 namespace detail {
 
-constexpr double kSqrtTwoThirds = 0.81649658092772603273;  // sqrt(2/3)
 constexpr double kSqrtSix = 2.44948974278317809820;
 // Floor eps_h of (alpha - alpha_in):n in h = b0 / (alpha - alpha_in):n (ours, docs/model.md §3 Eq. 10).
 constexpr double kHardeningFloor = 1e-6;
@@ -131,7 +135,7 @@ T relative_yield_function(const Parameters<T>& par, const State<T>& state) {
   const T xx = detail::contract(x, x);
   // Eq. (3); the guard keeps sqrt(0) (derivative 1/0) out of Jets.
   const T norm = value_of(xx) > detail::kMinDirectionSquared ? sqrt(xx) : T(0.0);
-  return norm - detail::kSqrtTwoThirds * par.m;
+  return norm - kSqrtTwoThirds * par.m;
 }
 
 template <typename T>
@@ -169,8 +173,8 @@ bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuanti
   q.zeta = q.psi - par.e_A * (q.A - 1.0);
 
   // Eq. (7)-(8): bounding and dilatancy image back-stress ratios.
-  q.alpha_b = (detail::kSqrtTwoThirds * (q.g * par.M_c * exp(-par.n_b * q.psi) - par.m)) * q.n;
-  q.alpha_d = (detail::kSqrtTwoThirds * (q.g * par.M_c * exp(par.n_d * q.zeta) - par.m)) * q.n;
+  q.alpha_b = (kSqrtTwoThirds * (q.g * par.M_c * exp(-par.n_b * q.psi) - par.m)) * q.n;
+  q.alpha_d = (kSqrtTwoThirds * (q.g * par.M_c * exp(par.n_d * q.zeta) - par.m)) * q.n;
 
   // Eq. (9)-(12): dilatancy, hardening, plastic modulus, N.
   q.D = par.A0 * detail::contract(Tensor<T>(q.alpha_d - state.alpha), q.n);
@@ -179,7 +183,7 @@ bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuanti
   if (value_of(distance) < detail::kHardeningFloor) distance = T(detail::kHardeningFloor);
   q.h = b0 / distance;
   q.K_p = (2.0 / 3.0) * q.p * q.h * detail::contract(Tensor<T>(q.alpha_b - state.alpha), q.n);
-  q.N = detail::contract(state.alpha, q.n) + detail::kSqrtTwoThirds * par.m;
+  q.N = detail::contract(state.alpha, q.n) + kSqrtTwoThirds * par.m;
   return true;
 }
 
