@@ -13,6 +13,7 @@
 #include <sstream>
 #include <cstdio>
 #include <stdexcept>
+#include <string_view>
 
 namespace calibration {
 
@@ -26,6 +27,19 @@ namespace {
 
 // The model's parameters, then a_cs.
 static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 15);
+
+// The index of a parameter in the fit vector, by its name in kParameterFields (at compile time:
+// a misspelt name does not compile).
+constexpr int fit_index(std::string_view name) {
+  for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
+    if (std::string_view(kParameterFields<double>[k].first) == name) return static_cast<int>(k);
+  return name == "a_cs" ? kAcsIndex : throw std::logic_error("no fit parameter of that name");
+}
+constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c"),
+              kEGamma = fit_index("e_gamma"), kLambdaC = fit_index("lambda_c"),
+              kXi = fit_index("xi"), kH0 = fit_index("h0"), kCh = fit_index("c_h"),
+              kNb = fit_index("n_b"), kA0 = fit_index("A0"), kNd = fit_index("n_d"),
+              kEA = fit_index("e_A"), kKF = fit_index("k_F");
 const std::array<const char*, kNumFitParameters> kNames = [] {
   std::array<const char*, kNumFitParameters> names{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
@@ -321,7 +335,7 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
   if (has(Stage::kCsl)) {
     std::vector<double> eta_cs;
     for (const auto& c : result.critical_states) eta_cs.push_back(c.eta);
-    if (!user_fixed[2]) set(2, mean(eta_cs), standard_error_of_mean(eta_cs), "csl");
+    if (!user_fixed[kMc]) set(kMc, mean(eta_cs), standard_error_of_mean(eta_cs), "csl");
     // Distinct pressures (more than 10 % apart).
     std::vector<double> pressures;
     for (const auto& c : result.critical_states) {
@@ -350,7 +364,7 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
         *se_l = std::sqrt(cov(1, 1));
       }
     };
-    const int ig = 4, il = 5, ix = 6;
+    const int ig = kEGamma, il = kLambdaC, ix = kXi;
     if (distinct == 1 || user_fixed[il]) {
       // One pressure: only e_Gamma is identifiable; lambda_c and xi keep their values.
       std::vector<double> eg;
@@ -385,9 +399,9 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
     }
   }
   // c_h e_gamma < 1 (b0 > 0 over the void ratios the model can reach).
-  upper[9] = std::min(upper[9], 0.99 / x[4]);
-  x[9] = std::min(x[9], upper[9]);
-  result.estimates[9].upper = upper[9];
+  upper[kCh] = std::min(upper[kCh], 0.99 / x[kEGamma]);
+  x[kCh] = std::min(x[kCh], upper[kCh]);
+  result.estimates[kCh].upper = upper[kCh];
 
   // Stage elastic: secant over the first output interval of each test.
   if (has(Stage::kElastic)) {
@@ -406,8 +420,8 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
       nu.push_back(0.5 * (1.0 - dev / dea));  // drained elastic: de_v/de_a = 1 - 2 nu
     }
     if (!g0.empty()) {
-      if (!user_fixed[0]) set(0, mean(g0), standard_error_of_mean(g0), "elastic");
-      if (!user_fixed[1]) set(1, mean(nu), standard_error_of_mean(nu), "elastic");
+      if (!user_fixed[kG0]) set(kG0, mean(g0), standard_error_of_mean(g0), "elastic");
+      if (!user_fixed[kNu]) set(kNu, mean(nu), standard_error_of_mean(nu), "elastic");
       result.notes.push_back(
           "elasticity: secant over the first output interval (a lower bound of G0, the cone is "
           "crossed almost at once); refined by the joint stage");
@@ -422,14 +436,14 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
     e_max = std::max(e_max, t.e0);
   }
   const bool c_h_identifiable = e_max - e_min >= 0.05;
-  if (!c_h_identifiable && !user_fixed[9])
+  if (!c_h_identifiable && !user_fixed[kCh])
     result.notes.push_back("c_h held (initial void ratios span less than 0.05: it trades off "
                            "with h0)");
 
   auto free_of = [&](std::initializer_list<int> wanted) {
     std::vector<int> free;
     for (int i : wanted)
-      if (!user_fixed[i] && (i != 9 || c_h_identifiable)) free.push_back(i);
+      if (!user_fixed[i] && (i != kCh || c_h_identifiable)) free.push_back(i);
     return free;
   };
   std::uint64_t stage_seed = options.seed;
@@ -498,15 +512,16 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
     }
     ResidualSpec spec = base_spec;
     spec.eta = spec.volumetric = false;
-    run(Stage::kFabric, spec, free_of({14}), 1);
+    run(Stage::kFabric, spec, free_of({kKF}), 1);
   }
   if (has(Stage::kPlastic)) {
     ResidualSpec spec = base_spec;
     spec.fabric = false;
-    run(Stage::kPlastic, spec, free_of({8, 9, 10, 11, 12, 13}), options.starts);
+    run(Stage::kPlastic, spec, free_of({kH0, kCh, kNb, kA0, kNd, kEA}), options.starts);
   }
   if (has(Stage::kJoint))
-    run(Stage::kJoint, base_spec, free_of({0, 1, 2, 8, 9, 10, 11, 12, 13, 14}), options.starts);
+    run(Stage::kJoint, base_spec,
+        free_of({kG0, kNu, kMc, kH0, kCh, kNb, kA0, kNd, kEA, kKF}), options.starts);
 
   result.values = x;
   for (int i = 0; i < kNumFitParameters; ++i) {
