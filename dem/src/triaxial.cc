@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -198,7 +199,7 @@ void TriaxialTest::drive_platens() {
   top.velocity = -platen_speed;
 }
 
-void TriaxialTest::update_lateral_walls() {
+void TriaxialTest::update_lateral_walls(double axial_stress) {
   auto& walls = sim_.walls();
   if (holds_volume(options_.path)) {
     // Each lateral width set, at the end of the coming step, to the one that keeps the volume
@@ -220,13 +221,13 @@ void TriaxialTest::update_lateral_walls() {
     return;
   }
   const std::array<double, 2> targets =
-      lateral_targets(options_.path, options_.confining_stress, options_.b, sim_.wall_stress(2));
+      lateral_targets(options_.path, options_.confining_stress, options_.b, axial_stress);
   for (int axis = 0; axis < 2; ++axis) {
     if (!(targets[axis] > 0.0)) {
       std::ostringstream msg;
       msg << "triaxial: path " << loading_path_name(options_.path) << " asks for a lateral stress of "
           << targets[axis] << " Pa on axis " << "xy"[axis] << " at an axial stress of "
-          << sim_.wall_stress(2) << " Pa: the specimen cannot keep p0 = "
+          << axial_stress << " Pa: the specimen cannot keep p0 = "
           << options_.confining_stress << " Pa at this q";
       throw std::runtime_error(msg.str());
     }
@@ -293,7 +294,10 @@ CheckpointExtras TriaxialTest::extras() const {
           {"next_snapshot", next_snapshot_}, {"next_checkpoint", next_checkpoint_},
           {"worst_lateral_error", worst_lateral_error_}, {"peak_eta", peak_eta_},
           {"peak_eta_strain", peak_eta_strain_}, {"max_inertial_number", max_inertial_number_},
-          {"initial_void_ratio", initial_void_ratio_}};
+          {"initial_void_ratio", initial_void_ratio_},
+          // What the last step left on the platens: the first lateral targets after a resume
+          // (a restored engine has no wall forces until it steps).
+          {"axial_stress", sim_.wall_stress(2)}};
 }
 
 TriaxialSummary TriaxialTest::run(RunFile* file,
@@ -301,6 +305,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
                                   const CheckpointExtras* resumed) {
   const auto start = std::chrono::steady_clock::now();
   const std::int64_t start_step = sim_.step_count();
+  double resumed_axial_stress = std::numeric_limits<double>::quiet_NaN();
   if (resumed) {
     const CheckpointExtras& x = *resumed;
     // A checkpoint of another kind (a specimen's, from preparation) lacks the test's state.
@@ -326,6 +331,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     peak_eta_strain_ = need("peak_eta_strain");
     max_inertial_number_ = need("max_inertial_number");
     initial_void_ratio_ = need("initial_void_ratio");
+    if (lateral_targets_follow_axial_stress(options_.path)) resumed_axial_stress = need("axial_stress");
     drive_platens();
     if (file) {
       history_strain_ = file->series("axial_strain");
@@ -342,7 +348,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       holds_volume(options_.path) || lateral_targets_follow_axial_stress(options_.path);
   // The first row needs the wall forces of a step taken with the platens moving.
   if (!resumed) {
-    if (step_by_step) update_lateral_walls();
+    if (step_by_step) update_lateral_walls(sim_.wall_stress(2));
     sim_.step();
   }
   const double platen_speed = 0.5 * options_.strain_rate * height0_;
@@ -363,7 +369,9 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       const auto steps = static_cast<std::int64_t>(
           std::ceil(remaining > 2.0 ? 0.5 * remaining : remaining - 1e-9));
       if (step_by_step) {
-        update_lateral_walls();
+        update_lateral_walls(std::isnan(resumed_axial_stress)
+                                 ? sim_.wall_stress(2)
+                                 : std::exchange(resumed_axial_stress, std::nan("")));
         sim_.step();
       } else {
         sim_.run(std::max<std::int64_t>(1, steps));

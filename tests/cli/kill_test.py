@@ -6,8 +6,9 @@ For each kill the run file must (docs/run-file.md, "A killed run"):
   - hold, in /series, the uninterrupted run's rows up to its last completed row, bit for bit;
   - be continued by `sffcal triaxial --resume` into the uninterrupted run, bit for bit in every
     dataset (series, snapshots, checkpoint).
-Two scenes: fine output (a row every 1e-5 of axial strain, a checkpoint every 2.5e-4, a snapshot
-every 5e-4: the file is written almost all the time) and coarse output (the defaults' proportions).
+Three scenes: fine output (a row every 1e-5 of axial strain, a checkpoint every 2.5e-4, a snapshot
+every 5e-4: the file is written almost all the time), coarse output (the defaults' proportions)
+and a true triaxial test (its lateral targets set step by step from the axial stress).
 The moments are drawn with a seed that is printed; a kill before the file exists, or before its
 first checkpoint, is counted separately (resume then refuses by name: nothing to continue).
 
@@ -32,6 +33,10 @@ SCENES = {
              "snapshot_strain_interval": "5e-4"},
     "coarse": {"max_axial_strain": "0.04", "output_strain_interval": "1e-3", "checkpoint_strain_interval": "2e-3",
                "snapshot_strain_interval": "5e-3"},
+    # a loading path whose lateral targets follow the axial stress step by step (docs/dem.md)
+    "true_triaxial": {"path": '"true_triaxial"', "b": "0.5", "max_axial_strain": "0.02",
+                      "output_strain_interval": "5e-4", "checkpoint_strain_interval": "2e-3",
+                      "snapshot_strain_interval": "5e-3"},
 }
 COMMON = {"bodies": "150", "threads": "1"}
 

@@ -116,9 +116,9 @@ class TriaxialTest {
   double path_strain() const { return direction_ * axial_strain(); }  ///< |eps_a| along the path
   double void_ratio() const;
   void drive_platens();
-  /// Sets the lateral walls for the next step: the path's stress targets, or the velocities that
-  /// keep the volume (undrained).
-  void update_lateral_walls();
+  /// Sets the lateral walls for the next step: the path's stress targets at the axial stress
+  /// [Pa] the last step left, or the velocities that keep the volume (undrained).
+  void update_lateral_walls(double axial_stress);
   bool critical_state(std::size_t* window_start) const;
   CheckpointExtras extras() const;
 
