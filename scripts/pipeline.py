@@ -14,7 +14,6 @@ report/report.md (+ report.html). See docs/pipeline.md.
 """
 import argparse
 import importlib.util
-import json
 import os
 import subprocess
 import sys

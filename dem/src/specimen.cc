@@ -30,6 +30,22 @@ Eigen::Vector3d major_direction(const Eigen::Matrix3d& tensor, bool largest) {
   return v[k] < 0.0 ? (-v).eval() : v;  // a sign convention: the largest component positive
 }
 
+// A cell as the error message shows it: quoted, control characters and bytes beyond ASCII as \xNN
+// (a raw carriage return would overwrite the message on the terminal).
+std::string quoted(const std::string& cell) {
+  std::string out = "'";
+  for (const unsigned char c : cell) {
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
+      out += hex;
+    }
+  }
+  return out + "'";
+}
+
 }  // namespace
 
 std::string PreparationReport::describe() const {
@@ -70,26 +86,6 @@ Eigen::Matrix3d particle_axis_fabric(const Particles& particles) {
   }
   return phi / particles.num_bodies();
 }
-
-namespace {
-
-// A cell as the error message shows it: quoted, control characters and bytes beyond ASCII as \xNN
-// (a raw carriage return would overwrite the message on the terminal).
-std::string quoted(const std::string& cell) {
-  std::string out = "'";
-  for (const unsigned char c : cell) {
-    if (c >= 0x20 && c < 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      char hex[8];
-      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
-      out += hex;
-    }
-  }
-  return out + "'";
-}
-
-}  // namespace
 
 Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
                            Eigen::Vector3d* hi, double max_overlap_ratio) {

@@ -16,7 +16,6 @@ Usage: fuzz_inputs.py SFFCAL [--cases N] [--seed S] [--timeout SECONDS] [--keep 
 """
 import argparse
 import hashlib
-import json
 import os
 import random
 import re
@@ -182,8 +181,8 @@ def mutate_run_file(rng, path):
 
 
 class Fuzz:
-    def __init__(self, sffcal, timeout, work):
-        self.sffcal, self.timeout, self.work = sffcal, timeout, work
+    def __init__(self, sffcal, timeout):
+        self.sffcal, self.timeout = sffcal, timeout
         self.failures, self.cases, self.refused, self.accepted = 0, 0, 0, 0
 
     def run(self, label, command, inputs, outputs, updated=()):
@@ -236,7 +235,7 @@ def main():
     os.makedirs(work, exist_ok=True)
     os.chdir(work)
     rng = random.Random(args.seed)
-    fuzz = Fuzz(sffcal, args.timeout, work)
+    fuzz = Fuzz(sffcal, args.timeout)
     print(f"fuzz_inputs: seed {args.seed}, {args.cases} cases, in {work}")
 
     # The valid inputs the mutations start from: a small, short scene (any valid mutation ends
