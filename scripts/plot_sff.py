@@ -7,7 +7,9 @@ For each run: <stem>_eta.png (the stress ratio against axial strain with its SFF
 fabric (2/5)a_c, normal force (2/5)a_n, mobilisation (3/5)mu m) and <stem>_rose.png (rose
 diagrams of the contact-normal density and the mean normal force in the Y-Z plane at the initial,
 peak and last snapshots). For all runs together: anisotropy.png (a_c, a_n and m against axial
-strain). Needs python3-h5py and python3-matplotlib (Debian).
+strain; with tables written since issue 18, a second row in the Guo & Zhao (2013) convention:
+a_n of the raw normal force, the branch-length anisotropy a_l and a_t). Needs python3-h5py and
+python3-matplotlib (Debian).
 """
 import argparse
 import os
@@ -51,6 +53,8 @@ def plot_eta(run, sff, mu, path):
     ax.plot(eps, sff["wall_eta"], "k:", label="eta, walls")
     ax.plot(eps, sff["eta_sff"], "r--", label="eta_SFF (full tensor equation)")
     ax.plot(eps, sff["eta_decoupled"], "b-.", label="eta decoupled")
+    if "eta_gz" in sff:
+        ax.plot(eps, sff["eta_gz"], "g:", label="eta, Guo & Zhao first order")
     ax.set_xlabel("axial strain [%]")
     ax.set_ylabel("stress ratio q/p [-]")
     ax.set_title(f"{run}: SFF decomposition of the stress ratio")
@@ -89,17 +93,27 @@ def plot_rose(run, sff, rose, path):
     plt.close(fig)
 
 
+ANISOTROPY_PANELS = [("a_c", "fabric a_c"), ("a_n", "normal force a_n (f l)"), ("m", "mobilisation m")]
+GUO_ZHAO_PANELS = [("a_n_gz", "normal force a_n, Guo & Zhao"), ("a_l", "branch length a_l"),
+                   ("a_t_gz", "tangential force a_t, Guo & Zhao")]
+
+
 def plot_anisotropy(curves, path):
-    fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), sharex=True)
+    rows = [ANISOTROPY_PANELS]
+    if all("a_n_gz" in sff for _, sff in curves):
+        rows.append(GUO_ZHAO_PANELS)
+    fig, axes = plt.subplots(len(rows), 3, figsize=(12, 3.8 * len(rows)), sharex=True, squeeze=False)
     for run, sff in curves:
         eps = 100 * sff["axial_strain"]
-        for ax, key in zip(axes, ["a_c", "a_n", "m"]):
-            ax.plot(eps, sff[key], "-o", ms=3, label=run)
-    for ax, key in zip(axes, ["fabric a_c", "normal force a_n", "mobilisation m"]):
-        ax.set_xlabel("axial strain [%]")
-        ax.set_title(key)
-        ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=8)
+        for panels, row in zip(rows, axes):
+            for ax, (key, _) in zip(row, panels):
+                ax.plot(eps, sff[key], "-o", ms=3, label=run)
+    for panels, row in zip(rows, axes):
+        for ax, (_, title) in zip(row, panels):
+            ax.set_xlabel("axial strain [%]")
+            ax.set_title(title)
+            ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

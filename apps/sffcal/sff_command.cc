@@ -26,9 +26,11 @@ void print_summary(const std::vector<sff::SnapshotAnalysis>& all, const std::vec
   auto line = [&](const char* name, std::size_t k) {
     const sff::SnapshotAnalysis& a = all[k];
     std::printf("  %-8s eps_a %.3f  eta %.3f (walls %.3f)  a_c %.3f  a_n %.3f  m %.3f  eta_sff %.3f  "
-                "eta_decoupled %.3f = %.3f (fabric+force) + %.3f (mobilisation)\n",
+                "eta_decoupled %.3f = %.3f (fabric+force) + %.3f (mobilisation)\n"
+                "  %-8s Guo & Zhao: a_n %.3f  a_l %.3f  a_t %.3f  eta_gz %.3f\n",
                 name, strains[k], a.eta, a.wall_eta, a.a_c, a.a_n, a.m, a.eta_sff, a.eta_decoupled,
-                0.4 * (a.a_c + a.a_n), a.eta_decoupled - 0.4 * (a.a_c + a.a_n));
+                0.4 * (a.a_c + a.a_n), a.eta_decoupled - 0.4 * (a.a_c + a.a_n), "", a.a_n_gz,
+                a.a_l, a.a_t_gz, a.eta_gz);
   };
   std::printf("summary:\n");
   line("peak", peak);
@@ -62,6 +64,10 @@ int sff_command(const std::vector<std::string>& run_paths, const SffCommandOptio
           std::printf("%8.4f %8.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f\n",
                       s.axial_strain, a->eta, a->eta_sff, a->eta_decoupled, a->a_c, a->a_n, a->m,
                       a->coordination, a->sff_error, a->branch_ratio, a->wall_stress_error);
+          if (a->binned_weights)
+            std::printf("         warning: 1 + lambda_min(A) = %.3f <= %.1f, too anisotropic for "
+                        "second-order weights: binned direction weights used\n",
+                        a->min_density, sff::DirectionWeight::kMinSecondOrderDensity);
         });
     sff::store_run_tables(file, tables, check_options);
     const double seconds =

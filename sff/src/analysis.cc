@@ -45,8 +45,11 @@ DirectionalTensors directional_tensors(ContactSpan contacts, const ForceScale& s
   if (!(friction > 0.0)) throw StatisticsError("directional_tensors: the friction coefficient must be positive");
   DirectionalTensors t;
   t.fabric = fabric_anisotropy(fabric_tensor(contacts));
+  const DirectionWeight weight(contacts, t.fabric);
+  t.min_density = weight.min_density();
+  t.binned_weights = weight.binned();
   // One pass for every force moment (the bootstrap repeats this per resample).
-  const internal::ForceMoments moments = internal::accumulate_force_moments(contacts, t.fabric, scale, friction);
+  const internal::ForceMoments moments = internal::accumulate_force_moments(contacts, weight, scale, friction);
   const NormalForceStatistics nf = normal_force_statistics(moments);
   t.lambda = nf.lambda;
   t.normal = nf.anisotropy;
@@ -101,6 +104,13 @@ SnapshotAnalysis analyse_snapshot(const SnapshotInput& in) {
   a.weighted_mobilisation = t.weighted_mobilisation;
   a.mobilisation = t.mobilisation;
   a.sliding_fraction = t.sliding_fraction;
+  a.min_density = t.min_density;
+  a.binned_weights = t.binned_weights;
+  a.guo_zhao = guo_zhao_anisotropy(in.contacts, DirectionWeight(in.contacts, a.fabric));
+  a.a_n_gz = triaxial(a.guo_zhao.normal);
+  a.a_t_gz = triaxial(a.guo_zhao.tangential);
+  a.a_l = triaxial(a.guo_zhao.branch);
+  a.eta_gz = triaxial_invariants(a.guo_zhao.bracket(a.fabric)).eta;
   a.a_c = triaxial(a.fabric);
   a.a_n = triaxial(a.normal);
   a.a_t = triaxial(a.tangential);
@@ -139,10 +149,11 @@ SnapshotChecks check_snapshot(const SnapshotInput& in, const SnapshotAnalysis& a
   const ForceScale scale{in.youngs_modulus, in.solid_volume / in.num_bodies};
   SnapshotChecks c;
   c.branch = branch_check(in.contacts);
-  c.truncation = truncation_check(directional_bins(in.contacts, scale, options.bins), a.fabric,
-                                  a.lambda, a.normal);
+  // The cells about the stress's principal axes: the checks do not depend on the lab frame.
+  const DirectionCells cells = DirectionCells::principal(options.cells, a.stress);
+  c.truncation = truncation_check(in.contacts, scale, a.fabric, a.lambda, a.normal, cells);
   c.independence = independence_check(in.contacts, in.friction, scale, a.lambda, a.normal,
-                                      a.weighted_mobilisation, a.mobilisation);
+                                      a.weighted_mobilisation, a.mobilisation, cells);
   c.coaxiality = coaxiality_check(a.stress, a.fabric, a.normal, a.tangential, a.mobilisation);
   c.strong_weak = strong_weak_split(in.contacts, scale, in.volume);
   if (options.resamples > 0)
@@ -168,6 +179,9 @@ const std::vector<std::string>& analysis_columns() {
                             "_value_1", "_value_2", "_value_3", "_minor_axis_x", "_minor_axis_y",
                             "_minor_axis_z", "_alignment", "_about_stress_axis"})
         n.push_back(std::string(t) + f);
+    // The weights' fallback (sff-theory.md §8) and the Guo & Zhao convention (guo_zhao.h).
+    n.insert(n.end(), {"min_density", "binned_weights", "f_0", "l_0", "a_n_gz", "a_t_gz", "a_l",
+                       "a_n_gz_invariant", "a_t_gz_invariant", "a_l_invariant", "eta_gz"});
     return n;
   }();
   return names;
@@ -202,6 +216,10 @@ std::vector<double> analysis_row(const SnapshotAnalysis& a) {
     row.insert(row.end(), {p->major, p->axis.x(), p->axis.y(), p->axis.z(), p->tilt_deg});
   for (const Eigen::Matrix3d* t : {&a.stress, &a.fabric, &a.normal, &a.tangential, &a.mobilisation})
     append_general_form(row, *t, a.stress, a.stress_axis.axis);
+  const GuoZhaoAnisotropy& g = a.guo_zhao;
+  row.insert(row.end(), {a.min_density, a.binned_weights ? 1.0 : 0.0, g.mean_normal_force,
+                         g.mean_branch_length, a.a_n_gz, a.a_t_gz, a.a_l, signed_invariant(g.normal),
+                         signed_invariant(g.tangential), signed_invariant(g.branch), a.eta_gz});
   return row;
 }
 

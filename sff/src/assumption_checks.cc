@@ -74,20 +74,21 @@ BranchCheck branch_check(ContactSpan contacts) {
 IndependenceCheck independence_check(ContactSpan contacts, double friction, const ForceScale& scale,
                                      double lambda, const Eigen::Matrix3d& normal_f,
                                      const Eigen::Matrix3d& weighted_mobilisation,
-                                     const Eigen::Matrix3d& mobilisation_tensor) {
+                                     const Eigen::Matrix3d& mobilisation_tensor,
+                                     const DirectionCells& cells) {
   if (!(friction > 0.0)) throw StatisticsError("independence_check: friction must be positive");
-  constexpr int kBands = 18;
-  constexpr std::size_t kMinimumBand = 30;
-  std::vector<std::vector<double>> xi(kBands), force(kBands);
+  constexpr std::size_t kMinimumCell = 30;
+  const auto num_cells = static_cast<std::size_t>(cells.size());
+  std::vector<std::vector<double>> xi(num_cells), force(num_cells);
   Eigen::Matrix3d decoupled = Eigen::Matrix3d::Zero();
   const double n = for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
     const Eigen::Vector3d normal = normal_of(c), ft = tangential_of(c);
     const double ft_norm = ft.norm();
     const double mobilised =
         c.normal_force > 0.0 ? std::min(1.0, ft_norm / (friction * c.normal_force)) : 0.0;
-    const auto band = static_cast<std::size_t>(std::min(kBands - 1, static_cast<int>(std::abs(normal.z()) * kBands)));
-    xi[band].push_back(mobilised);
-    force[band].push_back(c.normal_force * scale.factor(c));
+    const auto cell = static_cast<std::size_t>(cells.cell_of(normal));
+    xi[cell].push_back(mobilised);
+    force[cell].push_back(c.normal_force * scale.factor(c));
     if (ft_norm > 0.0 && mobilised > 0.0)
       decoupled.noalias() +=
           (w * mobilised * (1.0 + normal.dot(normal_f * normal)) / ft_norm) * ft * normal.transpose();
@@ -95,8 +96,8 @@ IndependenceCheck independence_check(ContactSpan contacts, double friction, cons
   if (!(n > 0.0 && lambda > 0.0)) throw StatisticsError("independence_check: no body-body contacts");
   IndependenceCheck check;
   double counted = 0.0;
-  for (int b = 0; b < kBands; ++b) {
-    if (xi[b].size() < kMinimumBand) continue;
+  for (std::size_t b = 0; b < num_cells; ++b) {
+    if (xi[b].size() < kMinimumCell) continue;
     const double rho = spearman_correlation(xi[b], force[b]);
     check.mean_spearman += rho * static_cast<double>(xi[b].size());
     counted += static_cast<double>(xi[b].size());

@@ -1,16 +1,20 @@
 #include "sff/directional.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <Eigen/Dense>
+
+#include "sff/direction_weight.h"
+#include "sff/tensors.h"
 
 namespace sff {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Running weighted sums of one quantity in one bin.
+// Running weighted sums of one quantity in one cell.
 struct Moments {
   double weight = 0.0, sum = 0.0, sum_squares = 0.0;
   void add(double w, double x) {
@@ -26,134 +30,194 @@ struct Moments {
   }
 };
 
-// Averages over a band with cos theta uniform in [c0, c1] (uniform solid angle).
-double mean_cos2(double c0, double c1) { return (c0 * c0 + c0 * c1 + c1 * c1) / 3.0; }
-double mean_cos4(double c0, double c1) {
-  return (std::pow(c1, 5) - std::pow(c0, 5)) / (5.0 * (c1 - c0));
-}
-// n.T.n averaged over the azimuth and the band (off-diagonal terms average out).
-double band_quadratic_form(const Eigen::Matrix3d& t, double c0, double c1) {
-  const double c2 = mean_cos2(c0, c1);
-  return t(2, 2) * c2 + 0.5 * (t(0, 0) + t(1, 1)) * (1.0 - c2);
-}
-double band_legendre2(double c0, double c1) { return 1.5 * mean_cos2(c0, c1) - 0.5; }
-double band_legendre4(double c0, double c1) {
-  return (35.0 * mean_cos4(c0, c1) - 30.0 * mean_cos2(c0, c1) + 3.0) / 8.0;
-}
-// Band averages of sin*cos and sin*cos^3 (antiderivatives in c = cos theta).
-double mean_sin_cos(double c0, double c1) {
-  auto f = [](double c) { return -std::pow(1.0 - c * c, 1.5) / 3.0; };
-  return (f(c1) - f(c0)) / (c1 - c0);
-}
-double mean_sin_cos3(double c0, double c1) {
-  auto f = [](double c) {
-    const double u = 1.0 - c * c;
-    return -std::pow(u, 1.5) / 3.0 + std::pow(u, 2.5) / 5.0;
-  };
-  return (f(c1) - f(c0)) / (c1 - c0);
-}
-// dP2/dtheta = -3 sin cos and dP4/dtheta = -(5/2) sin cos (7 cos^2 - 3), band-averaged.
-double band_dlegendre2(double c0, double c1) { return -3.0 * mean_sin_cos(c0, c1); }
-double band_dlegendre4(double c0, double c1) {
-  return -2.5 * (7.0 * mean_sin_cos3(c0, c1) - 3.0 * mean_sin_cos(c0, c1));
+// A fourth-order tensor, entry (i, j, k, l) at 27 i + 9 j + 3 k + l.
+using Tensor4 = std::array<double, 81>;
+int index4(int i, int j, int k, int l) { return 27 * i + 9 * j + 3 * k + l; }
+
+// t += w sym(v (x) n (x) n (x) n): the average over the four places of v (n (x) n (x) n is
+// symmetric already). v = n gives w n (x) n (x) n (x) n.
+void add_dyad4(Tensor4& t, double w, const Eigen::Vector3d& v, const Eigen::Vector3d& n) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          t[index4(i, j, k, l)] += 0.25 * w *
+                                   (v[i] * n[j] * n[k] * n[l] + n[i] * v[j] * n[k] * n[l] +
+                                    n[i] * n[j] * v[k] * n[l] + n[i] * n[j] * n[k] * v[l]);
 }
 
-// Least squares y ~ X c; returns c.
-Eigen::VectorXd least_squares(const Eigen::MatrixXd& x, const Eigen::VectorXd& y) {
-  return x.colPivHouseholderQr().solve(y);
+// Frobenius norm of the harmonic (fully traceless) part of a symmetric fourth-order tensor T:
+// H = T - (6/7) S(delta, T2) + (3/35) tr(T2) S(delta, delta), T2_ij = T_ijkk, S the symmetrised
+// products (Kanatani 1984; on the unit sphere T::nnnn = H::nnnn + (6/7) dev(T2):nn + tr(T2)/5).
+double harmonic_norm4(const Tensor4& t) {
+  Eigen::Matrix3d t2 = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) t2(i, j) += t[index4(i, j, k, k)];
+  const double trace = t2.trace();
+  auto d = [](int a, int b) { return a == b ? 1.0 : 0.0; };
+  double squares = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) {
+          const double s_t2 = (d(i, j) * t2(k, l) + d(i, k) * t2(j, l) + d(i, l) * t2(j, k) +
+                               d(j, k) * t2(i, l) + d(j, l) * t2(i, k) + d(k, l) * t2(i, j)) /
+                              6.0;
+          const double s_dd = (d(i, j) * d(k, l) + d(i, k) * d(j, l) + d(i, l) * d(j, k)) / 3.0;
+          const double h = t[index4(i, j, k, l)] - (6.0 / 7.0) * s_t2 + (3.0 / 35.0) * trace * s_dd;
+          squares += h * h;
+        }
+  return std::sqrt(squares);
 }
 
-TruncationFit compare(const Eigen::VectorXd& measured, const Eigen::VectorXd& form,
-                      const Eigen::VectorXd& error, int fitted_parameters,
-                      const Eigen::MatrixXd& legendre_basis, int second_column, int fourth_column) {
+// One coefficient tensor of the harmonic series, estimated by a weighted mean over contacts
+// c = sum s_k x_k / S of per-contact tensors x_k (s_k the contacts' weights).
+struct CoefficientEstimate {
+  double norm = 0.0;          ///< |c|
+  double sum_s2_x2 = 0.0;     ///< sum s_k^2 |x_k|^2
+  double sum_s2 = 0.0, sum_s = 0.0;
+  /// |c|^2 less its sampling variance sum s_k^2 |x_k - c|^2 / S^2: |c_hat|^2 exceeds |c|^2 by that
+  /// much on average, which would make the ratio of N contacts at least about 9 / sqrt(N).
+  double debiased_square() const {
+    const double variance = (sum_s2_x2 - norm * norm * sum_s2) / (sum_s * sum_s);
+    return norm * norm - variance;
+  }
+};
+
+// Amplitude of the degree-4 part over that of the degree-2 part of D2:nn + D4::nnnn on the
+// sphere: (2l+1)/(4 pi) int (D_l . n^l)^2 dOmega is (2/3)|D2|^2 and (8/35)|D4|^2 for harmonic
+// D_l, i.e. |c_l| of a Legendre series c_l P_l. Bias-corrected; 0 without a second-order part.
+double fourth_over_second(const CoefficientEstimate& second, const CoefficientEstimate& fourth) {
+  const double second_power = (2.0 / 3.0) * second.debiased_square();
+  const double fourth_power = (8.0 / 35.0) * std::max(0.0, fourth.debiased_square());
+  return second_power > 0.0 ? std::sqrt(fourth_power / second_power) : 0.0;
+}
+
+// measured, form and error: one row per cell, one column per component.
+TruncationFit compare(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& form,
+                      const Eigen::MatrixXd& error, int fitted_parameters, double fourth_order_ratio) {
   TruncationFit fit;
-  const Eigen::VectorXd residual = measured - form;
-  const double mean = measured.mean();
-  const double total = (measured.array() - mean).square().sum();
+  const Eigen::MatrixXd residual = measured - form;
+  const Eigen::RowVectorXd mean = measured.colwise().mean();
+  const double total = (measured.rowwise() - mean).squaredNorm();
   fit.r_squared = total > 0.0 ? 1.0 - residual.squaredNorm() / total : 0.0;
   fit.relative_l2 = measured.norm() > 0.0 ? residual.norm() / measured.norm() : 0.0;
   double chi2 = 0.0;
   int used = 0;
   for (Eigen::Index k = 0; k < measured.size(); ++k) {
-    if (!(error[k] > 0.0)) continue;
-    chi2 += residual[k] * residual[k] / (error[k] * error[k]);
+    if (!(error(k) > 0.0)) continue;
+    chi2 += residual(k) * residual(k) / (error(k) * error(k));
     ++used;
   }
   const int dof = used - fitted_parameters;
   fit.chi2_per_dof = dof > 0 ? chi2 / dof : 0.0;
-  const Eigen::VectorXd c = least_squares(legendre_basis, measured);
-  fit.fourth_order_ratio =
-      c[second_column] != 0.0 ? std::abs(c[fourth_column]) / std::abs(c[second_column]) : 0.0;
+  fit.fourth_order_ratio = fourth_order_ratio;
   return fit;
 }
 
 }  // namespace
 
-std::vector<DirectionalBin> directional_bins(ContactSpan contacts, const ForceScale& scale,
-                                             int num_bins) {
-  if (num_bins < 3) throw StatisticsError("directional_bins: at least 3 bins");
-  std::vector<Moments> normal(static_cast<std::size_t>(num_bins)),
-      tangential(static_cast<std::size_t>(num_bins));
-  const double total = for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
-    Eigen::Vector3d n = normal_of(c), ft = tangential_of(c);
-    if (n.z() < 0.0) n = -n, ft = -ft;  // the same contact seen from the other body
-    const auto k = static_cast<std::size_t>(std::min(num_bins - 1, static_cast<int>(n.z() * num_bins)));
-    const double factor = scale.factor(c);
-    normal[k].add(w, c.normal_force * factor);
-    const double s = std::hypot(n.x(), n.y());
-    if (s > 1e-12) {
-      const Eigen::Vector3d e_theta(n.z() * n.x() / s, n.z() * n.y() / s, -s);
-      tangential[k].add(w, factor * ft.dot(e_theta));
-    }
-  });
-  if (!(total > 0.0)) throw StatisticsError("directional_bins: no body-body contacts");
-  std::vector<DirectionalBin> bins(static_cast<std::size_t>(num_bins));
-  const double solid_angle = 4.0 * kPi / num_bins;
-  for (std::size_t k = 0; k < bins.size(); ++k) {
-    DirectionalBin& b = bins[k];
-    b.cos_low = static_cast<double>(k) / num_bins;
-    b.cos_high = static_cast<double>(k + 1) / num_bins;
-    b.count = normal[k].weight;
-    b.density = b.count / (total * solid_angle);
-    b.normal_force = normal[k].mean();
-    b.normal_force_error = normal[k].standard_error();
-    b.tangential_force = tangential[k].mean();
-    b.tangential_force_error = tangential[k].standard_error();
-  }
-  return bins;
-}
-
-TruncationCheck truncation_check(const std::vector<DirectionalBin>& bins,
+TruncationCheck truncation_check(ContactSpan contacts, const ForceScale& scale,
                                  const Eigen::Matrix3d& fabric_a, double lambda,
-                                 const Eigen::Matrix3d& normal_f) {
-  const auto n = static_cast<Eigen::Index>(bins.size());
-  double total = 0.0;
-  for (const DirectionalBin& b : bins) total += b.count;
-  if (n < 3 || !(total > 0.0)) throw StatisticsError("truncation_check: empty bins");
-  Eigen::VectorXd density(n), density_form(n), density_error(n);
-  Eigen::VectorXd force(n), force_form(n), force_error(n);
-  Eigen::VectorXd shear(n), shear_error(n);
-  Eigen::MatrixXd legendre(n, 3), dlegendre(n, 2);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const DirectionalBin& b = bins[static_cast<std::size_t>(k)];
-    const double c0 = b.cos_low, c1 = b.cos_high;
-    const double solid_angle = 4.0 * kPi * (c1 - c0);
-    density[k] = b.density;
-    density_form[k] = (1.0 + band_quadratic_form(fabric_a, c0, c1)) / (4.0 * kPi);
-    density_error[k] = std::sqrt(b.count) / (total * solid_angle);  // Poisson
-    force[k] = b.normal_force;
-    force_form[k] = lambda * (1.0 + band_quadratic_form(normal_f, c0, c1));
-    force_error[k] = b.normal_force_error;
-    shear[k] = b.tangential_force;
-    shear_error[k] = b.tangential_force_error;
-    legendre.row(k) << 1.0, band_legendre2(c0, c1), band_legendre4(c0, c1);
-    dlegendre.row(k) << band_dlegendre2(c0, c1), band_dlegendre4(c0, c1);
+                                 const Eigen::Matrix3d& normal_f, const DirectionCells& cells) {
+  if (!(lambda > 0.0)) throw StatisticsError("truncation_check: Lambda must be positive");
+  const DirectionWeight weight(contacts, fabric_a);
+  // Pass 1: the moments of the second- and fourth-order coefficients (Kanatani 1984), and the
+  // Ouadfel-Rothenburg tensor of the tangential field. Per contact, |dev(n n)|^2 = 2/3,
+  // |H(n n n n)|^2 = 8/35 and, for f_t normal to n, |sym(f_t n)|^2 = |f_t|^2 / 2 and
+  // |H(sym(f_t n n n))|^2 = |f_t|^2 / 7: the sampling variances need only these scalars.
+  Tensor4 density4{}, force4{}, shear4{};
+  Eigen::Matrix3d density2 = Eigen::Matrix3d::Zero(), force2 = Eigen::Matrix3d::Zero(),
+                  shear2 = Eigen::Matrix3d::Zero();
+  double sum_s2 = 0.0, force_squares = 0.0, shear_squares = 0.0;
+  const double total = for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
+    const Eigen::Vector3d n = normal_of(c);
+    const double factor = scale.factor(c), direction_weight = weight(n);
+    const double f_hat = c.normal_force * factor;
+    const Eigen::Vector3d ft_hat = factor * tangential_of(c);
+    density2.noalias() += (w * n) * n.transpose();
+    add_dyad4(density4, w, n, n);
+    force2.noalias() += (w * direction_weight * f_hat * n) * n.transpose();
+    add_dyad4(force4, w * direction_weight * f_hat, n, n);
+    shear2.noalias() += (w * direction_weight * ft_hat) * n.transpose();
+    add_dyad4(shear4, w * direction_weight, ft_hat, n);
+    sum_s2 += w * w;
+    force_squares += std::pow(w * direction_weight * f_hat, 2);
+    shear_squares += std::pow(w * direction_weight, 2) * ft_hat.squaredNorm();
+  });
+  if (!(total > 0.0)) throw StatisticsError("truncation_check: no body-body contacts");
+  // Coefficients: D2 = (15/2) dev N2 and D4 = (315/8) H(N4) for the density and the normal force;
+  // the tangential field's potential has (5/2) sym T1 and (63/8) H(sym T3) (sff-theory.md §6.2).
+  auto estimate = [&](double coefficient, double tensor_norm, double per_contact_square,
+                      double squares) {
+    return CoefficientEstimate{coefficient * tensor_norm / total,
+                               coefficient * coefficient * per_contact_square * squares, sum_s2,
+                               total};
+  };
+  constexpr double kD2 = 7.5, kD4 = 315.0 / 8.0, kT2 = 2.5, kT4 = 63.0 / 8.0;
+  const double density_ratio =
+      fourth_over_second(estimate(kD2, dev(density2).norm(), 2.0 / 3.0, sum_s2),
+                         estimate(kD4, harmonic_norm4(density4), 8.0 / 35.0, sum_s2));
+  const double force_ratio =
+      fourth_over_second(estimate(kD2, dev(force2).norm(), 2.0 / 3.0, force_squares),
+                         estimate(kD4, harmonic_norm4(force4), 8.0 / 35.0, force_squares));
+  const double shear_ratio =
+      fourth_over_second(estimate(kT2, sym(shear2).norm(), 0.5, shear_squares),
+                         estimate(kT4, harmonic_norm4(shear4), 1.0 / 7.0, shear_squares));
+  const Eigen::Matrix3d shear_tensor = 5.0 * sym(shear2) / (total * lambda);
+
+  // Pass 2: the cells, in their own (folded) frame.
+  const Eigen::Matrix3d& frame = cells.frame();
+  const Eigen::Matrix3d a_local = frame.transpose() * fabric_a * frame;
+  const Eigen::Matrix3d f_local = frame.transpose() * normal_f * frame;
+  const Eigen::Matrix3d t_local = frame.transpose() * shear_tensor * frame;
+  const auto num_cells = static_cast<std::size_t>(cells.size());
+  std::vector<Moments> force(num_cells);
+  std::vector<std::array<Moments, 3>> shear(num_cells);
+  std::vector<double> force_form(num_cells, 0.0);
+  std::vector<Eigen::Vector3d> shear_form(num_cells, Eigen::Vector3d::Zero());
+  for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
+    double sign = 1.0;
+    const Eigen::Vector3d n = cells.to_frame(normal_of(c), sign);
+    const auto k = static_cast<std::size_t>(cells.cell_of_folded(n));
+    const double factor = scale.factor(c);
+    force[k].add(w, c.normal_force * factor);
+    force_form[k] += w * lambda * (1.0 + n.dot(f_local * n));
+    const Eigen::Vector3d ft = sign * factor * (frame.transpose() * tangential_of(c));
+    for (int i = 0; i < 3; ++i) shear[k][static_cast<std::size_t>(i)].add(w, ft[i]);
+    const Eigen::Vector3d tn = t_local * n;
+    shear_form[k] += w * lambda * (tn - n.dot(tn) * n);
+  });
+  const auto rows = static_cast<Eigen::Index>(num_cells);
+  Eigen::MatrixXd density(rows, 1), density_form(rows, 1), density_error(rows, 1);
+  std::vector<Eigen::Index> occupied;
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    const double count = force[kk].weight;
+    density(k) = count / (total * cells.solid_angle());
+    density_form(k) = (1.0 + (a_local.cwiseProduct(cells.mean_dyad(static_cast<int>(k)))).sum()) / (4.0 * kPi);
+    density_error(k) = std::sqrt(count) / (total * cells.solid_angle());  // Poisson
+    if (count > 0.0) occupied.push_back(k);
+  }
+  const auto used = static_cast<Eigen::Index>(occupied.size());
+  Eigen::MatrixXd normal(used, 1), normal_form(used, 1), normal_error(used, 1);
+  Eigen::MatrixXd tangential(used, 3), tangential_form(used, 3), tangential_error(used, 3);
+  for (Eigen::Index r = 0; r < used; ++r) {
+    const auto k = static_cast<std::size_t>(occupied[static_cast<std::size_t>(r)]);
+    normal(r) = force[k].mean();
+    normal_form(r) = force_form[k] / force[k].weight;
+    normal_error(r) = force[k].standard_error();
+    for (int i = 0; i < 3; ++i) {
+      tangential(r, i) = shear[k][static_cast<std::size_t>(i)].mean();
+      tangential_form(r, i) = shear_form[k][i] / force[k].weight;
+      tangential_error(r, i) = shear[k][static_cast<std::size_t>(i)].standard_error();
+    }
   }
   TruncationCheck check;
-  check.density = compare(density, density_form, density_error, 1, legendre, 1, 2);
-  check.normal_force = compare(force, force_form, force_error, 1, legendre, 1, 2);
-  const Eigen::VectorXd g = least_squares(dlegendre.leftCols(1), shear);
-  check.tangential_force = compare(shear, dlegendre.leftCols(1) * g, shear_error, 1, dlegendre, 0, 1);
+  check.density = compare(density, density_form, density_error, 5, density_ratio);
+  check.normal_force = compare(normal, normal_form, normal_error, 6, force_ratio);
+  check.tangential_force = compare(tangential, tangential_form, tangential_error, 5, shear_ratio);
   return check;
 }
 

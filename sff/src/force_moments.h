@@ -6,22 +6,23 @@
 #include <Eigen/Core>
 
 #include "sff/contacts.h"
+#include "sff/direction_weight.h"
 #include "sff/statistics.h"
 
 namespace sff::internal {
 
 struct ForceMoments {
   double count = 0.0;                                     ///< weighted N_c
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();       ///< sum f_hat_n n n / (1 + n.A.n)
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();       ///< sum f_hat_n n n w(n)
   Eigen::Matrix3d tangential = Eigen::Matrix3d::Zero();   ///< sum f_hat_t n (not symmetrised)
   Eigen::Matrix3d weighted_mobilisation = Eigen::Matrix3d::Zero();  ///< sum xi f_hat_n tau n
-  Eigen::Matrix3d mobilisation = Eigen::Matrix3d::Zero();  ///< sum xi tau n / (1 + n.A.n)
+  Eigen::Matrix3d mobilisation = Eigen::Matrix3d::Zero();  ///< sum xi tau n w(n)
   double sliding = 0.0;                                   ///< weighted count with xi > 0.999
 };
 
-/// friction <= 0 skips the mobilisation moments. Throws StatisticsError for a non-positive
-/// second-order weight 1 + n.A.n.
-ForceMoments accumulate_force_moments(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
+/// w is the direction weight (second order or binned). friction <= 0 skips the mobilisation
+/// moments.
+ForceMoments accumulate_force_moments(ContactSpan contacts, const DirectionWeight& weight,
                                       const ForceScale& scale, double friction);
 
 }  // namespace sff::internal

@@ -27,7 +27,9 @@ Mobilisation mobilisation(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
                           double friction, const ForceScale& scale) {
   if (!(friction > 0.0)) throw StatisticsError("mobilisation: the friction coefficient must be positive");
   if (!(lambda > 0.0)) throw StatisticsError("mobilisation: Lambda must be positive");
-  return mobilisation(internal::accumulate_force_moments(contacts, fabric_a, scale, friction), lambda);
+  return mobilisation(
+      internal::accumulate_force_moments(contacts, DirectionWeight(contacts, fabric_a), scale, friction),
+      lambda);
 }
 
 Mobilisation mobilisation(const internal::ForceMoments& m, double lambda) {

@@ -82,7 +82,7 @@ double ForceScale::factor(const ContactRecord& c) const {
 
 namespace internal {
 
-ForceMoments accumulate_force_moments(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
+ForceMoments accumulate_force_moments(ContactSpan contacts, const DirectionWeight& weight,
                                       const ForceScale& scale, double friction) {
   if (!(scale.youngs_modulus > 0.0 && scale.mean_solid_volume > 0.0))
     throw StatisticsError("the force scale needs E > 0 and v_bar > 0");
@@ -90,14 +90,9 @@ ForceMoments accumulate_force_moments(ContactSpan contacts, const Eigen::Matrix3
   m.count = for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
     const Eigen::Vector3d normal = normal_of(c), ft = tangential_of(c);
     const double factor = scale.factor(c);
-    const double density = 1.0 + normal.dot(fabric_a * normal);
-    // The second-order density must stay clearly positive (sff-theory.md §8).
-    if (!(density > 0.1))
-      throw StatisticsError(
-          "the fabric anisotropy is too strong for second-order weights (1 + n.A.n <= 0.1); use "
-          "binned estimates");
+    const double direction_weight = weight(normal);
     const double f_hat = c.normal_force * factor;
-    m.normal.noalias() += (w * f_hat / density * normal) * normal.transpose();
+    m.normal.noalias() += (w * f_hat * direction_weight * normal) * normal.transpose();
     m.tangential.noalias() += (w * factor * ft) * normal.transpose();
     const double ft_norm = ft.norm();
     if (friction > 0.0 && ft_norm > 0.0 && c.normal_force > 0.0) {
@@ -105,7 +100,7 @@ ForceMoments accumulate_force_moments(ContactSpan contacts, const Eigen::Matrix3
       if (xi > 0.999) m.sliding += w;
       const Eigen::Matrix3d tn = (ft / ft_norm) * normal.transpose();
       m.weighted_mobilisation.noalias() += (w * xi * f_hat) * tn;
-      m.mobilisation.noalias() += (w * xi / density) * tn;
+      m.mobilisation.noalias() += (w * xi * direction_weight) * tn;
     }
   });
   if (!(m.count > 0.0)) throw StatisticsError("no body-body contacts");
@@ -116,7 +111,8 @@ ForceMoments accumulate_force_moments(ContactSpan contacts, const Eigen::Matrix3
 
 NormalForceStatistics normal_force_statistics(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
                                               const ForceScale& scale) {
-  const internal::ForceMoments m = internal::accumulate_force_moments(contacts, fabric_a, scale, 0.0);
+  const internal::ForceMoments m =
+      internal::accumulate_force_moments(contacts, DirectionWeight(contacts, fabric_a), scale, 0.0);
   return normal_force_statistics(m);
 }
 
@@ -133,7 +129,9 @@ Eigen::Matrix3d tangential_force_tensor(ContactSpan contacts, double lambda,
                                         const ForceScale& scale) {
   if (!(lambda > 0.0)) throw StatisticsError("tangential_force_tensor: Lambda must be positive");
   return tangential_force_tensor(
-      internal::accumulate_force_moments(contacts, Eigen::Matrix3d::Zero(), scale, 0.0), lambda);
+      internal::accumulate_force_moments(contacts, DirectionWeight(contacts, Eigen::Matrix3d::Zero()),
+                                         scale, 0.0),
+      lambda);
 }
 
 Eigen::Matrix3d tangential_force_tensor(const internal::ForceMoments& m, double lambda) {

@@ -1,6 +1,6 @@
 // The general form of the SFF tensors (issue 18): invariants against their closed forms, and a
-// DEM snapshot rotated by 45 degrees analysed to the same invariants (they do not depend on the
-// frame, as the triaxial scalars about z do).
+// DEM snapshot rotated by 45 degrees analysed to the same invariants and §6 statistics (they do
+// not depend on the frame, as the triaxial scalars about z do).
 #include "sff/invariants.h"
 
 #include <gtest/gtest.h>
@@ -85,6 +85,31 @@ TEST(Invariants, ARotatedSnapshotHasTheSameInvariants) {
         << names[k];
   }
   EXPECT_GT(std::abs(triaxial(a.fabric) - triaxial(b.fabric)), 0.05 * std::abs(triaxial(a.fabric)));
+  // The Guo & Zhao tensors' invariants, and the §6 statistics on cells about the stress's
+  // principal axes, turn with the snapshot too.
+  for (const auto member : {&GuoZhaoAnisotropy::normal, &GuoZhaoAnisotropy::tangential,
+                            &GuoZhaoAnisotropy::branch})
+    EXPECT_NEAR(tensor_invariants(a.guo_zhao.*member).magnitude,
+                tensor_invariants(b.guo_zhao.*member).magnitude, 1e-12);
+  EXPECT_NEAR(a.guo_zhao.mean_normal_force, b.guo_zhao.mean_normal_force, 1e-12 * a.guo_zhao.mean_normal_force);
+  CheckOptions no_bootstrap;
+  no_bootstrap.resamples = 0;
+  const SnapshotChecks ca = check_snapshot(in, a, no_bootstrap);
+  const SnapshotChecks cb = check_snapshot(in_turned, b, no_bootstrap);
+  for (const auto fit : {&TruncationCheck::density, &TruncationCheck::normal_force,
+                         &TruncationCheck::tangential_force}) {
+    const TruncationFit &fa = ca.truncation.*fit, &fb = cb.truncation.*fit;
+    EXPECT_NEAR(fa.r_squared, fb.r_squared, 1e-12);
+    EXPECT_NEAR(fa.relative_l2, fb.relative_l2, 1e-12);
+    EXPECT_NEAR(fa.chi2_per_dof, fb.chi2_per_dof, 1e-12 * fa.chi2_per_dof);
+    EXPECT_NEAR(fa.fourth_order_ratio, fb.fourth_order_ratio, 1e-12);
+  }
+  EXPECT_GT(ca.truncation.density.r_squared, 0.0);  // a real comparison, not an empty one
+  EXPECT_NEAR(ca.independence.mean_spearman, cb.independence.mean_spearman, 1e-12);
+  EXPECT_NEAR(ca.independence.coupling_error, cb.independence.coupling_error, 1e-12);
+  EXPECT_NEAR(ca.coaxiality.fabric_deg, cb.coaxiality.fabric_deg, 1e-6);
+  EXPECT_NEAR(ca.coaxiality.normal_deg, cb.coaxiality.normal_deg, 1e-6);
+  EXPECT_NEAR(ca.branch.mean_angle_deg, cb.branch.mean_angle_deg, 1e-9);
 }
 
 }  // namespace

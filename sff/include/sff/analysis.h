@@ -10,6 +10,7 @@
 #include "sff/bootstrap.h"
 #include "sff/contacts.h"
 #include "sff/directional.h"
+#include "sff/guo_zhao.h"
 
 namespace sff {
 
@@ -22,6 +23,9 @@ struct DirectionalTensors {
   Eigen::Matrix3d weighted_mobilisation = Eigen::Matrix3d::Zero();  ///< T_m
   Eigen::Matrix3d mobilisation = Eigen::Matrix3d::Zero();  ///< M
   double sliding_fraction = 0.0;
+  /// 1 + lambda_min(A); at 0.1 or less the weights are binned (direction_weight.h).
+  double min_density = 1.0;
+  bool binned_weights = false;
 };
 DirectionalTensors directional_tensors(ContactSpan contacts, const ForceScale& scale, double friction);
 
@@ -68,6 +72,14 @@ struct SnapshotAnalysis {
   /// contacts (equal to the wall stress in equilibrium); the contact form without centroids.
   double wall_stress_error = 0.0;
   double wall_layer_ratio = 0.0;    ///< |wall-contact terms| / |sigma|: what the contact form misses
+  /// 1 + lambda_min(A), and whether it was too small for second-order weights (sff-theory.md §8:
+  /// the estimators then used binned densities; a warning for the report).
+  double min_density = 1.0;
+  bool binned_weights = false;
+  /// The Guo & Zhao (2013) convention and the branch-length anisotropy (guo_zhao.h).
+  GuoZhaoAnisotropy guo_zhao;
+  double a_n_gz = 0.0, a_t_gz = 0.0, a_l = 0.0;  ///< t() of a^n, a^t, a^l
+  double eta_gz = 0.0;  ///< q/p of (2/5)(A + a^n + a^l) + (3/5) a^t about I (first order)
   PrincipalAxis stress_axis, fabric_axis, normal_axis, tangential_axis, mobilisation_axis;
   Eigen::Matrix3d weighted_mobilisation = Eigen::Matrix3d::Zero();  ///< T_m
   Eigen::Matrix3d stress = Eigen::Matrix3d::Zero();
@@ -90,7 +102,7 @@ struct SnapshotChecks {
   BootstrapIntervals bootstrap;
 };
 struct CheckOptions {
-  int bins = 18;            ///< cos-theta bands for the truncation check
+  int cells = 41;           ///< equal-area direction cells (odd) of the §6.2 and §6.3 checks
   int resamples = 200;      ///< bootstrap resamples (0: skip the bootstrap)
   std::uint64_t seed = 1;   ///< bootstrap seed
 };

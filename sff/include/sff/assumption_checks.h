@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "sff/contacts.h"
+#include "sff/direction_cells.h"
 #include "sff/statistics.h"
 
 namespace sff {
@@ -28,8 +29,8 @@ BranchCheck branch_check(ContactSpan contacts);
 
 /// §6.3: is the contact mobilisation xi independent of the normal force in each direction?
 struct IndependenceCheck {
-  double mean_spearman = 0.0;      ///< count-weighted mean over 18 cos-theta bands of corr(xi, f_n)
-  double max_abs_spearman = 0.0;   ///< largest |corr| over bands with >= 30 contacts
+  double mean_spearman = 0.0;      ///< count-weighted mean over the direction cells of corr(xi, f_n)
+  double max_abs_spearman = 0.0;   ///< largest |corr| over cells with >= 30 contacts
   /// |T_m - T_m^dec| / |T_m|, T_m^dec = (1/N_c) sum xi (1 + n.F.n) sym(tau n): the error of
   /// replacing each contact's normal force by its direction's mean.
   double coupling_error = 0.0;
@@ -38,7 +39,8 @@ struct IndependenceCheck {
 IndependenceCheck independence_check(ContactSpan contacts, double friction, const ForceScale& scale,
                                      double lambda, const Eigen::Matrix3d& normal_f,
                                      const Eigen::Matrix3d& weighted_mobilisation,
-                                     const Eigen::Matrix3d& mobilisation_tensor);
+                                     const Eigen::Matrix3d& mobilisation_tensor,
+                                     const DirectionCells& cells);
 
 /// Major principal direction (unit eigenvector of the largest eigenvalue) of a symmetric tensor.
 Eigen::Vector3d major_direction(const Eigen::Matrix3d& t);

@@ -1,50 +1,41 @@
-// Directional statistics by bins (sff-theory.md §6.2): the binned contact-normal density, mean
-// normal force and mean tangential force, their second-order (tensor) forms, and the size of the
+// Directional statistics (sff-theory.md §6.2, general form; issue 18): how well the second-order
+// (tensor) forms describe the contact-normal density, the mean normal force and the mean
+// tangential force by direction, on equal-area cells of the whole sphere, and the size of the
 // fourth-order terms the SFF equation truncates. Also the rose-diagram table for plots.
 #pragma once
 
 #include <vector>
 
 #include "sff/contacts.h"
+#include "sff/direction_cells.h"
 #include "sff/statistics.h"
 
 namespace sff {
 
-/// One band of directions about the loading axis z: |cos theta| in [cos_low, cos_high), both
-/// hemispheres (n and -n are the same contact direction). Bands are equal in cos theta, hence
-/// equal in solid angle.
-struct DirectionalBin {
-  double cos_low = 0.0, cos_high = 0.0;
-  double count = 0.0;                ///< weighted number of contacts
-  double density = 0.0;              ///< E(n): count / (N_c * solid angle) [1/sr]
-  double normal_force = 0.0;         ///< mean f_hat_n
-  double normal_force_error = 0.0;   ///< standard error of that mean
-  double tangential_force = 0.0;     ///< mean meridional component f_hat_t . e_theta
-  double tangential_force_error = 0.0;
-};
-
-/// The bands of a snapshot's body-body contacts (default 18, as in sff-theory.md §6.2).
-std::vector<DirectionalBin> directional_bins(ContactSpan contacts, const ForceScale& scale,
-                                             int num_bins = 18);
-
-/// How well a second-order form describes one binned quantity.
+/// How well a second-order form describes one quantity binned by direction.
 struct TruncationFit {
-  double r_squared = 0.0;        ///< 1 - SS_res / SS_tot of the second-order form
-  double relative_l2 = 0.0;      ///< |measured - form| / |measured| over the bins
-  double chi2_per_dof = 0.0;     ///< with the bins' standard errors (Poisson for the density)
-  double fourth_order_ratio = 0.0;  ///< |c4| / |c2| of a least-squares Legendre fit to 4th order
+  double r_squared = 0.0;        ///< 1 - SS_res / SS_tot over the cells
+  double relative_l2 = 0.0;      ///< |measured - form| / |measured| over the cells
+  double chi2_per_dof = 0.0;     ///< with the cells' standard errors (Poisson for the density)
+  /// Amplitude of the fourth-order spherical harmonics over that of the second-order ones
+  /// (Kanatani 1984), from contact moments, not from the cells; for an axisymmetric quantity it
+  /// is |c4| / |c2| of its Legendre series c2 P2 + c4 P4 (of the potential whose surface gradient
+  /// the tangential field is). Rotation invariant; corrected for the sampling noise, which alone
+  /// would give about 9 / sqrt(N_c) / |c2| (9 fourth-order components).
+  double fourth_order_ratio = 0.0;
 };
 
-/// The three quantities against their second-order forms. Density: E = (1 + n.A.n)/4pi;
-/// normal force: Lambda (1 + n.F.n) (both averaged over each band and over the azimuth);
-/// tangential force: the meridional field -(3/2) g sin(theta) cos(theta) with g fitted by least
-/// squares (the second-order Ouadfel-Rothenburg form), against a fit with the dP4/dtheta term.
+/// The three quantities against their second-order forms, each averaged over a cell: the density
+/// E = (1 + n.A.n) / 4 pi; the normal force Lambda (1 + n.F.n); the tangential force
+/// Lambda (a n - (n.a.n) n) (Ouadfel-Rothenburg), a = 5 sym <f_hat_t (x) n>_Omega / Lambda. The
+/// tangential force is compared as a vector in the cells' frame. Laid out in the principal frame
+/// of the stress (DirectionCells::principal), the statistics do not depend on the lab frame.
 struct TruncationCheck {
   TruncationFit density, normal_force, tangential_force;
 };
-TruncationCheck truncation_check(const std::vector<DirectionalBin>& bins,
+TruncationCheck truncation_check(ContactSpan contacts, const ForceScale& scale,
                                  const Eigen::Matrix3d& fabric_a, double lambda,
-                                 const Eigen::Matrix3d& normal_f);
+                                 const Eigen::Matrix3d& normal_f, const DirectionCells& cells);
 
 /// Rose diagram in the Y-Z plane (the plane of the loading axis and of the bedding tilt): the
 /// normals' projected angle psi = atan2(n_z, n_y) folded into [0, 180) deg, in equal sectors.

@@ -42,8 +42,9 @@ struct ForceScale {
   double factor(const ContactRecord& c) const;
 };
 
-/// Normal-force statistics: N = (1/N_c) sum f_hat_n n n / (1 + n.A.n), Lambda = tr N,
-/// F = 15 / (2 Lambda) dev N, so that the mean normal force by direction is Lambda (1 + n.F.n).
+/// Normal-force statistics: N = (1/N_c) sum f_hat_n n n w(n), Lambda = tr N,
+/// F = 15 / (2 Lambda) dev N, so that the mean normal force by direction is Lambda (1 + n.F.n);
+/// w(n) = 1 / (1 + n.A.n), or the binned weight of direction_weight.h for a very strong fabric.
 struct NormalForceStatistics {
   double lambda = 0.0;
   Eigen::Matrix3d anisotropy = Eigen::Matrix3d::Zero();  ///< F
@@ -63,7 +64,7 @@ Eigen::Matrix3d tangential_force_tensor(ContactSpan contacts, double lambda,
 /// The same from moments already accumulated (internal use).
 Eigen::Matrix3d tangential_force_tensor(const internal::ForceMoments& moments, double lambda);
 
-/// Thrown for statistics that are undefined (no contacts, Lambda = 0, a non-positive weight).
+/// Thrown for statistics that are undefined (no contacts, Lambda = 0, a non-finite tensor).
 struct StatisticsError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
