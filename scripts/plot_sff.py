@@ -42,24 +42,31 @@ def friction(f):
     return float(tomllib.loads(text).get("contact", {}).get("friction", 0.5773502691896257))
 
 
-def plot_eta(run, sff, mu, path):
+def draw_decomposition(ax, sff, mu, legend=True):
+    """q/p against axial strain [%] over the stacked SFF terms (2/5)a_c, (2/5)a_n, (3/5)mu m (all
+    about z, so an extension test's terms are negative), with eta_SFF and the decoupled eta."""
     eps = 100 * sff["axial_strain"]
     fabric, force = 0.4 * sff["a_c"], 0.4 * sff["a_n"]
     mobilisation = 0.6 * mu * sff["m"]
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    ax.stackplot(eps, fabric, force, mobilisation, alpha=0.35,
-                 labels=["fabric (2/5) a_c", "normal force (2/5) a_n", "mobilisation (3/5) mu m"])
+    labels = ["fabric (2/5) a_c", "normal force (2/5) a_n", "mobilisation (3/5) mu m"]
+    ax.stackplot(eps, fabric, force, mobilisation, alpha=0.35, labels=labels)
     ax.plot(eps, sff["eta"], "k-o", ms=3, label="eta, contacts")
-    ax.plot(eps, sff["wall_eta"], "k:", label="eta, walls")
     ax.plot(eps, sff["eta_sff"], "r--", label="eta_SFF (full tensor equation)")
     ax.plot(eps, sff["eta_decoupled"], "b-.", label="eta decoupled")
-    if "eta_gz" in sff:
-        ax.plot(eps, sff["eta_gz"], "g:", label="eta, Guo & Zhao first order")
     ax.set_xlabel("axial strain [%]")
     ax.set_ylabel("stress ratio q/p [-]")
-    ax.set_title(f"{run}: SFF decomposition of the stress ratio")
-    ax.legend(fontsize=8, loc="lower right")
     ax.grid(alpha=0.3)
+    if legend:
+        ax.legend(fontsize=8, loc="best")
+
+
+def plot_eta(run, sff, mu, path):
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    ax.plot(100 * sff["axial_strain"], sff["wall_eta"], "k:", label="eta, walls")
+    if "eta_gz" in sff:
+        ax.plot(100 * sff["axial_strain"], sff["eta_gz"], "g:", label="eta, Guo & Zhao first order")
+    draw_decomposition(ax, sff, mu)
+    ax.set_title(f"{run}: SFF decomposition of the stress ratio")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """The loading paths of the reference matrix (issue 18): stress paths, q/p and volumetric strain
-against axial strain, and a Markdown table with the extension-to-compression ratio M_e/M_c.
+against axial strain, and a Markdown table with the extension-to-compression ratio M_e/M_c; with
+--sff-png, the SFF decomposition of q/p of every path (one panel per run) and its table at the
+peak and at the end.
 
-usage: plot_paths.py PATHS_FOLDER DRAINED_FOLDER OUT_PNG
+usage: plot_paths.py PATHS_FOLDER DRAINED_FOLDER OUT_PNG [--sff-png SFF_PNG]
 
 PATHS_FOLDER holds the reduced runs of the other paths (und_*, ext_*, tt_*, dep_*_ext),
 DRAINED_FOLDER the drained compression runs of the same specimens (iso_dense_100kPa, ...).
@@ -12,6 +14,7 @@ the critical state where the run reached it (the table says which).
 import argparse
 import glob
 import os
+import sys
 
 import h5py
 import matplotlib
@@ -19,6 +22,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from plot_sff import draw_decomposition  # noqa: E402
 
 
 def read(path):
@@ -28,6 +34,9 @@ def read(path):
         run["path"] = f["loading"].attrs["path"] if "loading" in f else "drained_compression"
         run["ended"] = f["summary"].attrs["ended"] if "summary" in f else "?"
         run["e0"] = s["void_ratio"][0]
+        run["mu"] = float(f["physics"].attrs["friction"]) if "physics" in f else None
+        if "analysis/sff" in f:
+            run["sff"] = {k: v[()] for k, v in f["analysis/sff"].items()}
     run["name"] = os.path.basename(path)[:-3]
     strain = np.abs(run["axial_strain"])
     last = strain >= strain[-1] - 0.05
@@ -37,11 +46,53 @@ def read(path):
     return run
 
 
+def plot_decompositions(runs, png):
+    """One panel per run: q/p and its SFF terms against axial strain; and the Markdown table of
+    the terms at the peak of |q/p| and at the last snapshot."""
+    runs = [run for run in runs if "sff" in run and run["mu"] is not None]
+    columns = 5
+    rows = (len(runs) + columns - 1) // columns
+    fig, axes = plt.subplots(rows, columns, figsize=(4 * columns, 3.4 * rows), squeeze=False)
+    for ax, run in zip(axes.flat, runs):
+        sff = run["sff"]
+        held = sff["p"] >= 0.01 * run["p"][0]  # a liquefied specimen's terms are noise
+        ax.set_title(f"{run['name']}\n({run['path']})", fontsize=9)
+        if np.count_nonzero(held) < 2:
+            ax.text(0.5, 0.5, "liquefied before its\nfirst sheared snapshot", ha="center",
+                    va="center", transform=ax.transAxes)
+            ax.axis("off")
+            continue
+        draw_decomposition(ax, {k: v[held] for k, v in sff.items()}, run["mu"], legend=False)
+    for ax in list(axes.flat)[len(runs):]:
+        ax.axis("off")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=6, fontsize=8)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    fig.savefig(png, dpi=100)
+
+    print("| test | snapshot | ε_a | q/p | (2/5) a_c | (2/5) a_n | (3/5) μ m | η decoupled | η_SFF |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for run in runs:
+        sff = run["sff"]
+        held = np.flatnonzero(sff["p"] >= 0.01 * run["p"][0])
+        if len(held) < 2:
+            print(f"| {run['name']} | — | | | | | | | liquefied before its first sheared snapshot |")
+            continue
+        peak = held[np.argmax(np.abs(sff["eta"][held]))]
+        for label, k in (("peak", peak), ("last", held[-1])):
+            print(f"| {run['name']} | {label} | {100 * sff['axial_strain'][k]:.1f} % | {sff['eta'][k]:.3f} | "
+                  f"{0.4 * sff['a_c'][k]:.3f} | {0.4 * sff['a_n'][k]:.3f} | "
+                  f"{0.6 * run['mu'] * sff['m'][k]:.3f} | {sff['eta_decoupled'][k]:.3f} | "
+                  f"{sff['eta_sff'][k]:.3f} |")
+    print()
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("paths")
     parser.add_argument("drained")
     parser.add_argument("png")
+    parser.add_argument("--sff-png", help="also the SFF decomposition of each path, as this PNG and a table")
     args = parser.parse_args()
     runs = [read(p) for p in sorted(glob.glob(os.path.join(args.paths, "*.h5")))]
     drained = {os.path.basename(p)[:-3]: read(p)
@@ -66,6 +117,8 @@ def main():
     axes[0].legend(fontsize=6, loc="lower left")
     fig.tight_layout()
     fig.savefig(args.png, dpi=110)
+    if args.sff_png:
+        plot_decompositions(runs, args.sff_png)
 
     print("| test | path | e0 | peak q/p (ε_a) | final q/p | final p/p0 | final ε_v | ended |")
     print("|---|---|---|---|---|---|---|---|")
