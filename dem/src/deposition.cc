@@ -11,11 +11,12 @@
 
 #include "dem/packing.h"
 #include "dem/rigid_body.h"
+#include "sffcal/constants.h"
 
 namespace dem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 // Sizing of the bed. The cube keeps only the bodies wholly inside it, which leaves about half a
 // mean body length empty along each face: a cube of N bodies at the bed's solid fraction (about
 // 0.55, measured) needs one mean body length more on its side. The bed holds 20 % more bodies

@@ -3,10 +3,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sffcal/constants.h"
+
 namespace dem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 
 // Antiderivatives in u = z - s/2 (the distance from the nearer sphere centre along the axis)
 // of the slice integrands, with slice radius^2 = r^2 - u^2 and h = s/2.

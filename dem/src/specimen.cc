@@ -10,11 +10,12 @@
 #include "deposition.h"
 #include "dem/packing.h"
 #include "dem/rigid_body.h"
+#include "sffcal/constants.h"
 
 namespace dem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 
 double void_ratio(const Simulation& sim) {
   double solid = 0.0;

@@ -8,13 +8,13 @@
 #include "sff/sff_equation.h"
 #include "sff/statistics.h"
 #include "sff/tensors.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 
 double clump_volume(double radius, double centre_distance) {
-  constexpr double kPi = 3.14159265358979323846;
   const double r = radius, s = centre_distance;
-  return 8.0 * kPi * r * r * r / 3.0 - kPi * (4.0 * r + s) * (2.0 * r - s) * (2.0 * r - s) / 12.0;
+  return 8.0 * sffcal::kPi * r * r * r / 3.0 - sffcal::kPi * (4.0 * r + s) * (2.0 * r - s) * (2.0 * r - s) / 12.0;
 }
 
 double mechanical_coordination(ContactSpan contacts, int num_bodies) {

@@ -7,11 +7,10 @@
 #include <Eigen/Eigenvalues>
 
 #include "sff/tensors.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 namespace {
-
-constexpr double kDegrees = 180.0 / 3.14159265358979323846;
 
 std::vector<double> ranks(const std::vector<double>& x) {
   std::vector<std::size_t> order(x.size());
@@ -55,7 +54,7 @@ BranchCheck branch_check(ContactSpan contacts) {
     const Eigen::Vector3d l = branch_of(c), n = normal_of(c);
     const double length = l.norm();
     if (!(length > 0.0)) return;
-    angles.push_back(std::acos(std::clamp(l.dot(n) / length, -1.0, 1.0)) * kDegrees);
+    angles.push_back(std::acos(std::clamp(l.dot(n) / length, -1.0, 1.0)) * sffcal::kDegreesPerRadian);
     lengths.push_back(l.dot(n));
     forces.push_back(c.normal_force);
   });
@@ -120,7 +119,7 @@ Eigen::Vector3d major_direction(const Eigen::Matrix3d& t) {
 
 double axis_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const double c = std::abs(a.normalized().dot(b.normalized()));
-  return std::acos(std::min(1.0, c)) * kDegrees;
+  return std::acos(std::min(1.0, c)) * sffcal::kDegreesPerRadian;
 }
 
 CoaxialityCheck coaxiality_check(const Eigen::Matrix3d& stress, const Eigen::Matrix3d& fabric_a,

@@ -7,11 +7,12 @@
 #include <Eigen/Eigenvalues>
 
 #include "sff/statistics.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 
 int nearest_even(double x) { return 2 * static_cast<int>(std::lround(0.5 * x)); }
 

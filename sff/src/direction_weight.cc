@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "sff/statistics.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 
@@ -22,7 +23,7 @@ DirectionWeight::DirectionWeight(ContactSpan contacts, const Eigen::Matrix3d& fa
   for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
     counts[static_cast<std::size_t>(cells_.cell_of(normal_of(c)))] += w;
   });
-  constexpr double kFourPi = 4.0 * 3.14159265358979323846;
+  constexpr double kFourPi = 4.0 * sffcal::kPi;
   cell_weight_.resize(counts.size());
   for (std::size_t k = 0; k < counts.size(); ++k)
     cell_weight_[k] = counts[k] > 0.0 ? total * cells_.solid_angle() / (kFourPi * counts[k]) : 0.0;

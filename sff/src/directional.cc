@@ -8,11 +8,12 @@
 
 #include "sff/direction_weight.h"
 #include "sff/tensors.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 
 // Running weighted sums of one quantity in one cell.
 struct Moments {

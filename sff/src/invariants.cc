@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sff/tensors.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 
@@ -17,8 +18,7 @@ TensorInvariants tensor_invariants(const Eigen::Matrix3d& t) {
   inv.magnitude = std::sqrt(3.0 * j2);
   if (j2 > 0.0) {
     const double c = 1.5 * std::sqrt(3.0) * d.determinant() / std::pow(j2, 1.5);
-    const double degrees_per_radian = 180.0 / std::acos(-1.0);
-    inv.lode_deg = std::acos(std::clamp(c, -1.0, 1.0)) / 3.0 * degrees_per_radian;
+    inv.lode_deg = std::acos(std::clamp(c, -1.0, 1.0)) / 3.0 * sffcal::kDegreesPerRadian;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(s);  // ascending
   for (int k = 0; k < 3; ++k) {

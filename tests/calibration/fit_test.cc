@@ -16,6 +16,7 @@
 #include "dem/run_config.h"
 #include "runfile/run_file.h"
 #include "toyoura.h"
+#include "sffcal/constants.h"
 
 namespace calibration {
 namespace {
@@ -298,7 +299,7 @@ TEST(FitInputs, FrictionIsTheOneTheDemShearedWith) {
   const dem::RunConfig without_contact = dem::parse_run_config("bodies = 100\n");
   write_small_run(path, dem::run_metadata("triaxial", without_contact, "test"), true);
   EXPECT_EQ(read_run_file(path).friction, without_contact.contact.friction);
-  EXPECT_NEAR(read_run_file(path).friction, std::tan(M_PI / 6.0), 1e-15);
+  EXPECT_NEAR(read_run_file(path).friction, std::tan(sffcal::kPi / 6.0), 1e-15);
   const dem::RunConfig with_contact = dem::parse_run_config("[contact]\nfriction = 0.3\n");
   write_small_run(path, dem::run_metadata("triaxial", with_contact, "test"), true);
   EXPECT_EQ(read_run_file(path).friction, 0.3);

@@ -1,4 +1,5 @@
 #include "dem/rigid_body.h"
+#include "sffcal/constants.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,7 @@
 namespace dem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 
 TEST(TwoSphereUnion, MatchesReferenceValuesForPaperClump) {
   // Sphere radius r, centre distance s = r (total length 1.5 d): reference values from

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "dem/run_config.h"
+#include "sffcal/constants.h"
 
 namespace dem {
 namespace {
@@ -105,7 +106,7 @@ TEST(Preparation, DepositionOrientsTheFabricByTheLoadingAngle) {
   const Eigen::Vector3d normal = bedding_normal(90.0), in_plane = Eigen::Vector3d::UnitZ();
   // Elongated grains settle lying in the bedding plane: the clump-axis fabric's minor direction
   // is its normal.
-  EXPECT_GT(std::abs(report.axis_minor.dot(normal)), std::cos(20.0 * M_PI / 180.0)) << report.describe();
+  EXPECT_GT(std::abs(report.axis_minor.dot(normal)), std::cos(20.0 / sffcal::kDegreesPerRadian)) << report.describe();
   // Contacts gather on the grains' long sides, so the contact-normal fabric is largest along the
   // bedding normal, of the three axes it and the bedding plane define. (At this size its principal
   // direction scatters by tens of degrees; docs/dem.md has the directions on 1000 bodies.)

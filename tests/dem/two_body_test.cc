@@ -6,11 +6,12 @@
 #include "dem/packing.h"
 #include "dem/rigid_body.h"
 #include "dem/simulation.h"
+#include "sffcal/constants.h"
 
 namespace dem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 constexpr double kDensity = 2650.0;
 
 TEST(HeadOnCollision, LastsHalfAPeriodAndKeepsEnergy) {

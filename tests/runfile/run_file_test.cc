@@ -16,6 +16,7 @@
 
 #include "runfile/dem_test.h"
 #include "runfile/stored_physics.h"
+#include "sffcal/constants.h"
 
 namespace runfile {
 namespace {
@@ -92,7 +93,7 @@ TEST(RunFileContract, PhysicsAndSummaryAreStoredAsTypedAttributes) {
 TEST(RunFileContract, SchemaOnePhysicsComesFromTheStoredConfigWithItsDefaults) {
   const RunPhysics defaults = physics_from_config_text("bodies = 100\n", "x");
   EXPECT_EQ(defaults.friction, 0.5773502691896257);
-  EXPECT_NEAR(defaults.friction, std::tan(M_PI / 6.0), 1e-16);
+  EXPECT_NEAR(defaults.friction, std::tan(sffcal::kPi / 6.0), 1e-16);
   EXPECT_EQ(defaults.youngs_modulus, 150e6);
   EXPECT_EQ(defaults.grain_density, 2650.0);
   EXPECT_EQ(defaults.density_scaling, 1.0);

@@ -18,12 +18,13 @@
 #include "sff/guo_zhao.h"
 #include "sff/tensors.h"
 #include "synthetic_contacts.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 namespace {
 
 const ForceScale kUnitScale{0.5, 1.0};  // f_hat = f for l = n
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 
 using testing::legendre_normals;
 using testing::make_contact;

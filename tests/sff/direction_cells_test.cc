@@ -11,6 +11,7 @@
 #include <random>
 
 #include "sff/statistics.h"
+#include "sffcal/constants.h"
 #include "synthetic_contacts.h"
 
 namespace sff {
@@ -54,7 +55,7 @@ TEST(DirectionCells, HaveEqualSolidAnglesAndExactMoments) {
     Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
     for (int k = 0; k < size; ++k) sum += cells.mean_dyad(k);
     EXPECT_LT((sum / size - Eigen::Matrix3d::Identity() / 3.0).norm(), 1e-12) << size;
-    EXPECT_NEAR(cells.solid_angle() * size, 4.0 * std::acos(-1.0), 1e-12);
+    EXPECT_NEAR(cells.solid_angle() * size, 4.0 * sffcal::kPi, 1e-12);
   }
 }
 

@@ -14,6 +14,7 @@
 #include "sff/analysis.h"
 #include "sff/run_snapshot.h"
 #include "sff/tensors.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 namespace {
@@ -46,7 +47,7 @@ TEST(Invariants, ARotatedSnapshotHasTheSameInvariants) {
   dem::TriaxialTest(sim, options).run(nullptr, nullptr);
   const runfile::Snapshot snapshot = dem::take_snapshot(sim, 0.02);
   runfile::Snapshot turned = snapshot;
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.25 * std::acos(-1.0), Eigen::Vector3d::UnitX())
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.25 * sffcal::kPi, Eigen::Vector3d::UnitX())
                                 .toRotationMatrix();
   auto rotate = [&](runfile::Vec3Record& v) {
     Eigen::Map<Eigen::Vector3d> x(v.data());

@@ -8,11 +8,12 @@
 
 #include "sff/tensors.h"
 #include "synthetic_contacts.h"
+#include "sffcal/constants.h"
 
 namespace sff {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sffcal::kPi;
 
 Eigen::Matrix3d random_traceless(std::mt19937_64& rng, double scale) {
   std::normal_distribution<double> gauss;
