@@ -9,7 +9,6 @@ import argparse
 import csv
 import datetime
 import glob
-import html
 import json
 import os
 import re
@@ -19,6 +18,7 @@ import sys
 import tomllib
 
 import h5py
+import markdown
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -102,9 +102,9 @@ def run_status(log):
                 or re.match(r"^\s+material-point driver:|^\s+.*failed at", line)]
 
 
-def demote(markdown):
+def demote(text):
     """Headings of an embedded page one level down."""
-    return re.sub(r"^(#+) ", r"\1## ", markdown, flags=re.M)
+    return re.sub(r"^(#+) ", r"\1## ", text, flags=re.M)
 
 
 def write_markdown(out, scene_path):
@@ -205,52 +205,13 @@ def write_markdown(out, scene_path):
     return "\n".join(page.lines)
 
 
-def inline_html(text):
-    text = html.escape(text, quote=False)
-    text = re.sub(r"`([^`]+)`", r"<code>\1</code>", text)
-    text = re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", text)
-    return re.sub(r"\*([^*]+)\*", r"<i>\1</i>", text)
-
-
-def to_html(markdown):
-    """The small Markdown subset this page uses: headings, tables, images, lists, paragraphs."""
-    body, table, pre = [], None, None
-    for line in markdown.splitlines() + [""]:
-        if line == "```":
-            if pre is None:
-                pre = []
-            else:
-                body.append("<pre>" + html.escape("\n".join(pre)) + "</pre>")
-                pre = None
-            continue
-        if pre is not None:
-            pre.append(line)
-            continue
-        if line.startswith("|"):
-            cells = [c.strip().replace("\\|", "|") for c in re.split(r"(?<!\\)\|", line.strip()[1:-1])]
-            if table is None:
-                table = ["<table><tr>" + "".join(f"<th>{inline_html(c)}</th>" for c in cells) + "</tr>"]
-            elif not set("".join(cells)) <= set("-: "):
-                table.append("<tr>" + "".join(f"<td>{inline_html(c)}</td>" for c in cells) + "</tr>")
-            continue
-        if table is not None:
-            body.append("\n".join(table) + "</table>")
-            table = None
-        heading = re.match(r"^(#+) (.*)", line)
-        image = re.match(r"^!\[(.*)\]\((.*)\)$", line)
-        if heading:
-            level = len(heading.group(1))
-            body.append(f"<h{level}>{inline_html(heading.group(2))}</h{level}>")
-        elif image:
-            body.append(f'<img src="{html.escape(image.group(2))}" alt="{html.escape(image.group(1))}">')
-        elif line.startswith("- "):
-            body.append(f"<li>{inline_html(line[2:])}</li>")
-        elif line.strip():
-            body.append(f"<p>{inline_html(line)}</p>")
+def to_html(text):
+    """The page as HTML, by Debian's python3-markdown (tables and fenced code)."""
+    body = markdown.markdown(text, extensions=["tables", "fenced_code"])
     style = ("body{font-family:sans-serif;max-width:70em;margin:auto}table{border-collapse:collapse}"
              "td,th{border:1px solid #bbb;padding:2px 6px;font-size:90%}img{max-width:100%}")
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>sffcal main job</title>"
-            f"<style>{style}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n")
+            f"<style>{style}</style></head><body>\n{body}\n</body></html>\n")
 
 
 def main():
@@ -258,12 +219,12 @@ def main():
     parser.add_argument("out", help="output folder of scripts/pipeline.py")
     parser.add_argument("--scene", required=True)
     args = parser.parse_args()
-    markdown = write_markdown(args.out, args.scene)
+    page = write_markdown(args.out, args.scene)
     folder = os.path.join(args.out, "report")
     with open(os.path.join(folder, "report.md"), "w") as f:
-        f.write(markdown)
+        f.write(page)
     with open(os.path.join(folder, "report.html"), "w") as f:
-        f.write(to_html(markdown))
+        f.write(to_html(page))
     print(f"wrote {folder}/report.md and report.html")
 
 

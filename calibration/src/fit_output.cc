@@ -111,7 +111,7 @@ std::string summary_markdown(const CalibrationResult& r) {
     s << r.sff.note << "\n";
   }
   if (!r.notes.empty()) {
-    s << "\nNotes:\n";
+    s << "\nNotes:\n\n";  // a blank line: Markdown starts a list only after one
     for (const std::string& n : r.notes) s << "- " << n << "\n";
   }
   return s.str();
