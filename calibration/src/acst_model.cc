@@ -3,6 +3,7 @@
 #include <ceres/jet.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -103,31 +104,31 @@ const char* to_string(UpdateStatus status) {
 
 bool is_admissible_void_ratio(double e) { return e > 0.0 && e < detail::kElasticVoidLimit; }
 
-void validate_parameters(const Parameters<double>& par) {
-  auto require = [](bool ok, const char* name, double value, const char* range) {
-    if (!ok)
-      throw std::runtime_error(std::string("ACST parameter '") + name + "' = " +
-                               std::to_string(value) + " is not physical: it must be " + range);
+std::string ParameterRange::describe() const {
+  auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return std::string(text);
   };
-  auto finite = [](double x) { return std::isfinite(x); };
-  require(finite(par.G0) && par.G0 > 0.0, "G0", par.G0, "> 0");
-  require(finite(par.nu) && par.nu > -1.0 && par.nu < 0.5, "nu", par.nu, "in (-1, 0.5)");
-  require(finite(par.M_c) && par.M_c > 0.0, "M_c", par.M_c, "> 0");
-  require(finite(par.c) && par.c > 0.0 && par.c <= 1.0, "c", par.c, "in (0, 1]");
-  require(finite(par.e_gamma) && par.e_gamma > 0.0 && par.e_gamma < 2.97, "e_gamma", par.e_gamma,
-          "in (0, 2.97)");
-  require(finite(par.lambda_c) && par.lambda_c >= 0.0, "lambda_c", par.lambda_c, ">= 0");
-  require(finite(par.xi) && par.xi > 0.0, "xi", par.xi, "> 0");
-  require(finite(par.m) && par.m > 0.0 && par.m < par.c * par.M_c, "m", par.m,
-          "in (0, c M_c)");
-  require(finite(par.h0) && par.h0 > 0.0, "h0", par.h0, "> 0");
-  require(finite(par.c_h) && par.c_h >= 0.0 && par.c_h * par.e_gamma < 1.0, "c_h", par.c_h,
-          ">= 0 with c_h e_gamma < 1");
-  require(finite(par.n_b) && par.n_b >= 0.0, "n_b", par.n_b, ">= 0");
-  require(finite(par.A0) && par.A0 >= 0.0, "A0", par.A0, ">= 0");
-  require(finite(par.n_d) && par.n_d >= 0.0, "n_d", par.n_d, ">= 0");
-  require(finite(par.e_A) && par.e_A >= 0.0, "e_A", par.e_A, ">= 0");
-  require(finite(par.k_F) && par.k_F >= 0.0, "k_F", par.k_F, ">= 0");
+  if (high == detail::kUnbounded) return (low_closed ? ">= " : "> ") + number(low);
+  return std::string("in ") + (low_closed ? "[" : "(") + number(low) + ", " + number(high) +
+         (high_closed ? "]" : ")");
+}
+
+void validate_parameters(const Parameters<double>& par) {
+  auto fail = [](const char* name, double value, const std::string& range) {
+    throw std::runtime_error(std::string("ACST parameter '") + name + "' = " +
+                             std::to_string(value) + " is not physical: it must be " + range);
+  };
+  for (const ParameterField<double>& field : kParameterFields<double>) {
+    const double value = par.*field.member;
+    if (!(std::isfinite(value) && field.physical.contains(value)))
+      fail(field.name, value, field.physical.describe());
+  }
+  // The two conditions that couple parameters (docs/model.md): a cone inside the critical one,
+  // and a positive hardening factor 1 - c_h e.
+  if (!(par.m < par.c * par.M_c)) fail("m", par.m, "in (0, c M_c)");
+  if (!(par.c_h * par.e_gamma < 1.0)) fail("c_h", par.c_h, ">= 0 with c_h e_gamma < 1");
 }
 
 }  // namespace calibration

@@ -32,7 +32,7 @@ static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIn
 // a misspelt name does not compile).
 constexpr int fit_index(std::string_view name) {
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
-    if (std::string_view(kParameterFields<double>[k].first) == name) return static_cast<int>(k);
+    if (std::string_view(kParameterFields<double>[k].name) == name) return static_cast<int>(k);
   return name == "a_cs" ? kAcsIndex : throw std::logic_error("no fit parameter of that name");
 }
 constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c"),
@@ -43,7 +43,7 @@ constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c
 const std::array<const char*, kNumFitParameters> kNames = [] {
   std::array<const char*, kNumFitParameters> names{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
-    names[k] = kParameterFields<double>[k].first;
+    names[k] = kParameterFields<double>[k].name;
   names[kAcsIndex] = "a_cs";
   return names;
 }();
@@ -75,7 +75,7 @@ int fit_parameter_index(const std::string& name) {
 FitVector to_fit_vector(const Parameters<double>& p, double a_cs) {
   FitVector x{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
-    x[k] = p.*kParameterFields<double>[k].second;
+    x[k] = p.*kParameterFields<double>[k].member;
   x[kAcsIndex] = a_cs;
   return x;
 }
@@ -141,13 +141,20 @@ FitVector FitOptions::default_initial() {
           7.05,  0.968, 1.1, 0.704, 3.5, 0.1, 5.0, 1.0};
 }
 
+// The model's parameters search kParameterFields' fit ranges; a_cs, the fabric at the critical
+// state, [0.05, 3].
 FitVector FitOptions::default_lower() {
-  return {5.0, 0.0, 0.3, 0.5, 0.2, 0.0, 0.1, 0.001, 0.05, 0.0, 0.0, 0.01, 0.0, 0.0, 0.0, 0.05};
+  FitVector lower{};
+  for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k) lower[k] = kParameterFields<double>[k].fit_low;
+  lower[kAcsIndex] = 0.05;
+  return lower;
 }
 
 FitVector FitOptions::default_upper() {
-  return {3000.0, 0.45, 2.5, 1.0, 2.0, 0.5, 1.5, 0.1, 200.0, 0.99, 10.0, 10.0, 20.0, 3.0, 200.0,
-          3.0};
+  FitVector upper{};
+  for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k) upper[k] = kParameterFields<double>[k].fit_high;
+  upper[kAcsIndex] = 3.0;
+  return upper;
 }
 
 bool scaled_standard_errors(ceres::Problem& problem, double* block, int size, double cost,

@@ -37,7 +37,7 @@ int count_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec);
 template <typename T>
 Parameters<T> parameters_of(const std::array<T, kNumFitParameters>& v) {
   Parameters<T> p;
-  for (std::size_t k = 0; k < kParameterFields<T>.size(); ++k) p.*kParameterFields<T>[k].second = v[k];
+  for (std::size_t k = 0; k < kParameterFields<T>.size(); ++k) p.*kParameterFields<T>[k].member = v[k];
   return p;
 }
 

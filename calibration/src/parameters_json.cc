@@ -15,9 +15,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-// All the parameters are dimensionless.
 constexpr const auto& kFields = kParameterFields<double>;
-constexpr const char* kDimensionless = "1";
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw std::runtime_error("parameter file '" + path + "': " + what);
@@ -47,7 +45,8 @@ Parameters<double> read_parameters_json(const std::string& path) {
     fail(path, "missing key 'parameters' (an object)");
   const Json& params = root["parameters"];
   Parameters<double> par{};
-  for (const auto& [name, member] : kFields) {
+  for (const ParameterField<double>& field : kFields) {
+    const char* name = field.name;
     const std::string key = std::string("parameters.") + name;
     if (!params.contains(name)) fail(path, "missing key '" + key + "'");
     const Json& entry = params[name];
@@ -55,9 +54,9 @@ Parameters<double> read_parameters_json(const std::string& path) {
       fail(path, "missing key '" + key + ".value'");
     if (!entry["value"].is_number()) fail(path, "key '" + key + ".value' must be a number");
     if (!entry.contains("unit")) fail(path, "missing key '" + key + ".unit'");
-    if (!entry["unit"].is_string() || entry["unit"].get<std::string>() != kDimensionless)
-      fail(path, "key '" + key + ".unit' must be \"1\" (dimensionless)");
-    par.*member = entry["value"].get<double>();
+    if (!entry["unit"].is_string() || entry["unit"].get<std::string>() != field.unit)
+      fail(path, "key '" + key + ".unit' must be \"" + field.unit + "\"");
+    par.*field.member = entry["value"].get<double>();
   }
   try {
     validate_parameters(par);
@@ -75,8 +74,8 @@ Json parameters_object(const Parameters<double>& par) {
   root["model"] = "acst";
   root["reference_pressure"] = {{"value", kAtmosphericPressure}, {"unit", "Pa"}};
   Json params = Json::object();
-  for (const auto& [name, member] : kFields)
-    params[name] = {{"value", par.*member}, {"unit", kDimensionless}};
+  for (const ParameterField<double>& field : kFields)
+    params[field.name] = {{"value", par.*field.member}, {"unit", field.unit}};
   root["parameters"] = params;
   return root;
 }

@@ -44,7 +44,7 @@ void to_abaqus(const Tensor<double>& t, double* v, int n, double sign) {
 Parameters<double> parameters_from(const double* p) {
   Parameters<double> par;
   for (std::size_t k = 0; k < calibration::kParameterFields<double>.size(); ++k)
-    par.*calibration::kParameterFields<double>[k].second = p[k];
+    par.*calibration::kParameterFields<double>[k].member = p[k];
   return par;
 }
 

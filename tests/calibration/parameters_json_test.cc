@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "calibration/acst_model.h"
 #include "toyoura.h"
@@ -132,6 +133,58 @@ TEST(ParametersJson, BrokenFilesAreReported) {
   Parameters<double> p = toyoura();
   p.nu = 0.7;
   EXPECT_THROW(write_parameters_json(p, temp_path("invalid")), std::runtime_error);
+}
+
+// The one parameter table (kParameterFields) against docs/model.md §5: every parameter listed in
+// order, with the unit, the valid range validate_parameters enforces and the fit's search range.
+TEST(ParameterTable, DocsListEveryParameterAsTheCodeDoes) {
+  std::ifstream docs(std::string(SFFCAL_SOURCE_DIR) + "/docs/model.md");
+  ASSERT_TRUE(docs) << "docs/model.md";
+  std::vector<std::vector<std::string>> rows;
+  bool in_table = false;
+  for (std::string line; std::getline(docs, line);) {
+    if (line.rfind("| symbol (key) | unit |", 0) == 0) in_table = true;
+    else if (in_table && line.rfind("|", 0) != 0) break;
+    if (!in_table || line.rfind("|---", 0) == 0 || line.rfind("| symbol", 0) == 0) continue;
+    std::vector<std::string> cells;
+    for (std::size_t start = 1, bar; (bar = line.find(" |", start)) != std::string::npos; start = bar + 2)
+      cells.push_back(line.substr(start + 1, bar - start - 1));
+    rows.push_back(cells);
+  }
+  ASSERT_EQ(rows.size(), kParameterFields<double>.size());
+  auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return std::string(text);
+  };
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const ParameterField<double>& field = kParameterFields<double>[k];
+    ASSERT_GE(rows[k].size(), 6u) << k;
+    EXPECT_EQ(rows[k][0], field.name);
+    EXPECT_EQ(rows[k][1], field.unit) << field.name;
+    EXPECT_EQ(rows[k][4].substr(0, field.physical.describe().size()), field.physical.describe()) << field.name;
+    EXPECT_EQ(rows[k][5], "[" + number(field.fit_low) + ", " + number(field.fit_high) + "]") << field.name;
+    // The fit searches only where the model is valid.
+    EXPECT_TRUE(field.physical.contains(field.fit_low) && field.physical.contains(field.fit_high)) << field.name;
+  }
+}
+
+TEST(ParameterTable, ValidationNamesTheRangeOfTheTable) {
+  Parameters<double> par = testing::toyoura<double>();
+  par.nu = 0.5;
+  try {
+    validate_parameters(par);
+    FAIL() << "nu = 0.5 accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'nu' = 0.500000 is not physical: it must be in (-1, 0.5)"),
+              std::string::npos) << e.what();
+  }
+  par = testing::toyoura<double>();
+  par.m = par.c * par.M_c + 0.1;  // inside (0, inf) but outside the critical cone
+  EXPECT_THROW(validate_parameters(par), std::runtime_error);
+  par = testing::toyoura<double>();
+  par.c = 1.0;  // the closed end of (0, 1]
+  EXPECT_NO_THROW(validate_parameters(par));
 }
 
 }  // namespace

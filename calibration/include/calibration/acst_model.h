@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -34,16 +35,54 @@ struct Parameters {
   T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F;
 };
 
-/// Name and member of each parameter, in the order of acst-model.md: the one list that the
-/// parameter file, the fit vector and the fit's tables follow.
+namespace detail {
+/// The void ratio where the elastic law's (2.97 - e)^2 vanishes (DM04 Eq. 5).
+inline constexpr double kElasticVoidLimit = 2.97;
+inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+}  // namespace detail
+
+/// Where a parameter is physical: low < x < high, with <= at a closed end.
+struct ParameterRange {
+  double low, high;
+  bool low_closed, high_closed;
+  constexpr bool contains(double x) const {
+    return (low_closed ? x >= low : x > low) && (high_closed ? x <= high : x < high);
+  }
+  /// As docs/model.md writes it: "> 0", ">= 0", "in (-1, 0.5)", "in (0, 1]".
+  std::string describe() const;
+};
+
+/// One parameter of acst-model.md: its name (the key of the parameter file and of the fit's
+/// tables), its member, its unit, the range validate_parameters accepts (besides the coupled
+/// conditions m < c M_c and c_h e_gamma < 1) and the calibration's default search range.
 template <typename T>
-inline constexpr std::array<std::pair<const char*, T Parameters<T>::*>, 15> kParameterFields = {{
-    {"G0", &Parameters<T>::G0},   {"nu", &Parameters<T>::nu},   {"M_c", &Parameters<T>::M_c},
-    {"c", &Parameters<T>::c},     {"e_gamma", &Parameters<T>::e_gamma},
-    {"lambda_c", &Parameters<T>::lambda_c},                     {"xi", &Parameters<T>::xi},
-    {"m", &Parameters<T>::m},     {"h0", &Parameters<T>::h0},   {"c_h", &Parameters<T>::c_h},
-    {"n_b", &Parameters<T>::n_b}, {"A0", &Parameters<T>::A0},   {"n_d", &Parameters<T>::n_d},
-    {"e_A", &Parameters<T>::e_A}, {"k_F", &Parameters<T>::k_F},
+struct ParameterField {
+  const char* name;
+  T Parameters<T>::*member;
+  const char* unit;  ///< "1": every parameter is dimensionless (G0 multiplies p_a)
+  ParameterRange physical;
+  double fit_low, fit_high;
+};
+
+/// The parameters in the order of acst-model.md: the one list that the parameter file, its
+/// validation, the fit vector, the fit's bounds and tables and docs/model.md's table follow.
+template <typename T>
+inline constexpr std::array<ParameterField<T>, 15> kParameterFields = {{
+    {"G0", &Parameters<T>::G0, "1", {0.0, detail::kUnbounded, false, false}, 5.0, 3000.0},
+    {"nu", &Parameters<T>::nu, "1", {-1.0, 0.5, false, false}, 0.0, 0.45},
+    {"M_c", &Parameters<T>::M_c, "1", {0.0, detail::kUnbounded, false, false}, 0.3, 2.5},
+    {"c", &Parameters<T>::c, "1", {0.0, 1.0, false, true}, 0.5, 1.0},
+    {"e_gamma", &Parameters<T>::e_gamma, "1", {0.0, detail::kElasticVoidLimit, false, false}, 0.2, 2.0},
+    {"lambda_c", &Parameters<T>::lambda_c, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 0.5},
+    {"xi", &Parameters<T>::xi, "1", {0.0, detail::kUnbounded, false, false}, 0.1, 1.5},
+    {"m", &Parameters<T>::m, "1", {0.0, detail::kUnbounded, false, false}, 0.001, 0.1},
+    {"h0", &Parameters<T>::h0, "1", {0.0, detail::kUnbounded, false, false}, 0.05, 200.0},
+    {"c_h", &Parameters<T>::c_h, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 0.99},
+    {"n_b", &Parameters<T>::n_b, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 10.0},
+    {"A0", &Parameters<T>::A0, "1", {0.0, detail::kUnbounded, true, false}, 0.01, 10.0},
+    {"n_d", &Parameters<T>::n_d, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 20.0},
+    {"e_A", &Parameters<T>::e_A, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 3.0},
+    {"k_F", &Parameters<T>::k_F, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 200.0},
 }};
 
 template <typename T>

@@ -23,8 +23,6 @@ constexpr double kHardeningFloor = 1e-6;
 constexpr double kYieldTolerance = 1e-9;
 // Squared norm of r - alpha below which n is undefined (guards sqrt(0) for Jets).
 constexpr double kMinDirectionSquared = 1e-28;
-// Upper bound of e in the elastic law G ~ (2.97 - e)^2 / (1 + e).
-constexpr double kElasticVoidLimit = 2.97;
 
 template <typename T>
 T contract(const Tensor<T>& a, const Tensor<T>& b) {
@@ -108,7 +106,7 @@ template <typename U, typename T>
 Parameters<U> cast_parameters(const Parameters<T>& par) {
   Parameters<U> cast;
   for (std::size_t k = 0; k < kParameterFields<T>.size(); ++k)
-    cast.*kParameterFields<U>[k].second = U(value_of(par.*kParameterFields<T>[k].second));
+    cast.*kParameterFields<U>[k].member = U(value_of(par.*kParameterFields<T>[k].member));
   return cast;
 }
 
