@@ -6,6 +6,8 @@
 #include <string>
 #include <stdexcept>
 
+#include "sffcal/pvd.h"
+
 namespace dem {
 namespace {
 
@@ -14,14 +16,6 @@ std::ofstream open_for_writing(const std::string& path) {
   if (!out) throw std::runtime_error("cannot write " + path);
   out.precision(10);
   return out;
-}
-
-void write_collection(const std::string& path, const std::vector<std::pair<double, std::string>>& files) {
-  std::ofstream out = open_for_writing(path);
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
-  for (const auto& [time, file] : files)
-    out << "<DataSet timestep=\"" << time << "\" file=\"" << file << "\"/>\n";
-  out << "</Collection>\n</VTKFile>\n";
 }
 
 using BodyIndex = std::map<std::int64_t, const ParticleRecord*>;
@@ -104,17 +98,19 @@ void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
 
 int export_run_to_vtk(const RunFile& run, const std::string& folder) {
   std::filesystem::create_directories(folder);
-  std::vector<std::pair<double, std::string>> spheres, contacts;
+  std::vector<std::string> spheres, contacts;
+  std::vector<double> times;
   const int n = run.num_snapshots();
   for (int k = 0; k < n; ++k) {
     const Snapshot s = run.read_snapshot(k);
     const std::string name = "snapshot_" + std::to_string(k);
     write_snapshot_vtu(s, folder + "/" + name);
-    spheres.emplace_back(s.time, name + "_spheres.vtu");
-    contacts.emplace_back(s.time, name + "_contacts.vtu");
+    spheres.push_back(name + "_spheres.vtu");
+    contacts.push_back(name + "_contacts.vtu");
+    times.push_back(s.time);
   }
-  write_collection(folder + "/spheres.pvd", spheres);
-  write_collection(folder + "/contacts.pvd", contacts);
+  sffcal::write_pvd(folder + "/spheres.pvd", spheres, times, "simulated time [s]");
+  sffcal::write_pvd(folder + "/contacts.pvd", contacts, times, "simulated time [s]");
   return n;
 }
 

@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "fe_model/solid.h"
+#include "sffcal/pvd.h"
 
 namespace fe_model {
 namespace {
@@ -152,24 +153,9 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
   if (!options.vtu_prefix.empty()) {
     std::vector<double> times;
     for (const TriaxialStep& row : result.steps) times.push_back(row.axial_strain);
-    write_pvd(options.vtu_prefix + ".pvd", vtu_files, times, "axial strain (compression positive)");
+    sffcal::write_pvd(options.vtu_prefix + ".pvd", vtu_files, times, "axial strain (compression positive)");
   }
   return result;
-}
-
-void write_pvd(const std::string& path, const std::vector<std::string>& vtu_files,
-               const std::vector<double>& times, const std::string& time_meaning) {
-  if (vtu_files.size() != times.size())
-    throw std::invalid_argument("write_pvd: as many times as files are needed");
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot open " + path + " for writing");
-  out << "<?xml version=\"1.0\"?>\n<!-- timestep = " << time_meaning << " -->\n"
-      << "<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n"
-      << std::setprecision(10);
-  for (std::size_t i = 0; i < vtu_files.size(); ++i)
-    out << "  <DataSet timestep=\"" << times[i] << "\" file=\"" << vtu_files[i] << "\"/>\n";
-  out << "</Collection>\n</VTKFile>\n";
-  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 void write_triaxial_csv(const std::string& path, const std::vector<TriaxialStep>& steps) {

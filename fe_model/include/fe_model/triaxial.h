@@ -88,11 +88,6 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
 /// Writes the CSV (header + rows) of `steps`, compression positive, SI units.
 void write_triaxial_csv(const std::string& path, const std::vector<TriaxialStep>& steps);
 
-/// Writes a ParaView collection (.pvd) of the files `vtu_files` (names as they are to appear in
-/// it, relative to the .pvd's folder) with the given times.
-void write_pvd(const std::string& path, const std::vector<std::string>& vtu_files,
-               const std::vector<double>& times, const std::string& time_meaning);
-
 }  // namespace fe_model
 
 #endif  // FE_MODEL_TRIAXIAL_H_
