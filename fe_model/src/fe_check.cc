@@ -42,6 +42,18 @@ struct DemRun {
   Curve fabric;  // the /analysis/sff rows (with the fabric invariant)
 };
 
+CurvePoint curve_point(double axial_strain, double volumetric_strain, double p, double q,
+                       double void_ratio, double fabric_invariant) {
+  CurvePoint point;
+  point.axial_strain = axial_strain;
+  point.volumetric_strain = volumetric_strain;
+  point.p = p;
+  point.q = q;
+  point.void_ratio = void_ratio;
+  point.fabric_invariant = fabric_invariant;
+  return point;
+}
+
 DemRun read_dem_run(const std::string& path, double a_cs) {
   const runfile::DemTest test = runfile::read_dem_test(path);
   if (test.loading_path() != "drained_compression")
@@ -56,30 +68,18 @@ DemRun read_dem_run(const std::string& path, double a_cs) {
   run.void_ratio = s.void_ratio.front();
   run.curve.label = "dem";
   run.curve.completed = true;
-  for (std::size_t i = 0; i < s.axial_strain.size(); ++i) {
-    CurvePoint point;
-    point.axial_strain = s.axial_strain[i];
-    point.volumetric_strain = s.volumetric_strain[i];
-    point.p = s.p[i];
-    point.q = s.q[i];
-    point.void_ratio = s.void_ratio[i];
-    point.fabric_invariant = std::numeric_limits<double>::quiet_NaN();
-    run.curve.points.push_back(point);
-  }
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 0; i < s.axial_strain.size(); ++i)
+    run.curve.points.push_back(
+        curve_point(s.axial_strain[i], s.volumetric_strain[i], s.p[i], s.q[i], s.void_ratio[i], kNone));
   if (test.analysed && !test.sff.axial_strain.empty()) {
     const runfile::DemTestSff& f = test.sff;
     run.fabric.label = "dem_fabric";
     run.fabric.completed = true;
     std::size_t first = 0;
     for (std::size_t i = 0; i < f.axial_strain.size(); ++i) {
-      CurvePoint point;
-      point.axial_strain = f.axial_strain[i];
-      point.p = f.p[i];
-      point.q = f.q[i];
-      point.void_ratio = f.void_ratio[i];
-      point.volumetric_strain = std::numeric_limits<double>::quiet_NaN();
-      point.fabric_invariant = calibration::kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
-      run.fabric.points.push_back(point);
+      const double fabric = calibration::kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
+      run.fabric.points.push_back(curve_point(f.axial_strain[i], kNone, f.p[i], f.q[i], f.void_ratio[i], fabric));
       if (f.axial_strain[i] < f.axial_strain[first]) first = i;
     }
     run.initial_a_c = f.a_c[first];
