@@ -17,6 +17,7 @@ namespace dem {
 namespace {
 
 using sffcal::kPi;
+
 // Sizing of the bed. The cube keeps only the bodies wholly inside it, which leaves about half a
 // mean body length empty along each face: a cube of N bodies at the bed's solid fraction (about
 // 0.55, measured) needs one mean body length more on its side. The bed holds 20 % more bodies

@@ -31,26 +31,46 @@ struct Moments {
   }
 };
 
-// A fourth-order tensor, entry (i, j, k, l) at 27 i + 9 j + 3 k + l.
+// A symmetric fourth-order tensor by its 15 distinct entries (i <= j <= k <= l), what the
+// moments accumulate per contact; expanded to all 81 entries once, for the harmonic part.
+constexpr std::array<std::array<int, 4>, 15> kDistinct = {{
+    {0, 0, 0, 0}, {0, 0, 0, 1}, {0, 0, 0, 2}, {0, 0, 1, 1}, {0, 0, 1, 2}, {0, 0, 2, 2},
+    {0, 1, 1, 1}, {0, 1, 1, 2}, {0, 1, 2, 2}, {0, 2, 2, 2}, {1, 1, 1, 1}, {1, 1, 1, 2},
+    {1, 1, 2, 2}, {1, 2, 2, 2}, {2, 2, 2, 2}}};
+using SymmetricTensor4 = std::array<double, 15>;
 using Tensor4 = std::array<double, 81>;
 int index4(int i, int j, int k, int l) { return 27 * i + 9 * j + 3 * k + l; }
 
 // t += w sym(v (x) n (x) n (x) n): the average over the four places of v (n (x) n (x) n is
 // symmetric already). v = n gives w n (x) n (x) n (x) n.
-void add_dyad4(Tensor4& t, double w, const Eigen::Vector3d& v, const Eigen::Vector3d& n) {
+void add_dyad4(SymmetricTensor4& t, double w, const Eigen::Vector3d& v, const Eigen::Vector3d& n) {
+  for (std::size_t m = 0; m < kDistinct.size(); ++m) {
+    const auto [i, j, k, l] = kDistinct[m];
+    t[m] += 0.25 * w *
+            (v[i] * n[j] * n[k] * n[l] + n[i] * v[j] * n[k] * n[l] + n[i] * n[j] * v[k] * n[l] +
+             n[i] * n[j] * n[k] * v[l]);
+  }
+}
+
+Tensor4 expand(const SymmetricTensor4& t) {
+  Tensor4 full{};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l)
-          t[index4(i, j, k, l)] += 0.25 * w *
-                                   (v[i] * n[j] * n[k] * n[l] + n[i] * v[j] * n[k] * n[l] +
-                                    n[i] * n[j] * v[k] * n[l] + n[i] * n[j] * n[k] * v[l]);
+        for (int l = 0; l < 3; ++l) {
+          std::array<int, 4> sorted = {i, j, k, l};
+          std::sort(sorted.begin(), sorted.end());
+          const auto m = std::find(kDistinct.begin(), kDistinct.end(), sorted) - kDistinct.begin();
+          full[index4(i, j, k, l)] = t[static_cast<std::size_t>(m)];
+        }
+  return full;
 }
 
 // Frobenius norm of the harmonic (fully traceless) part of a symmetric fourth-order tensor T:
 // H = T - (6/7) S(delta, T2) + (3/35) tr(T2) S(delta, delta), T2_ij = T_ijkk, S the symmetrised
 // products (Kanatani 1984; on the unit sphere T::nnnn = H::nnnn + (6/7) dev(T2):nn + tr(T2)/5).
-double harmonic_norm4(const Tensor4& t) {
+double harmonic_norm4(const SymmetricTensor4& distinct) {
+  const Tensor4 t = expand(distinct);
   Eigen::Matrix3d t2 = Eigen::Matrix3d::Zero();
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -128,7 +148,7 @@ TruncationCheck truncation_check(ContactSpan contacts, const ForceScale& scale,
   // Ouadfel-Rothenburg tensor of the tangential field. Per contact, |dev(n n)|^2 = 2/3,
   // |H(n n n n)|^2 = 8/35 and, for f_t normal to n, |sym(f_t n)|^2 = |f_t|^2 / 2 and
   // |H(sym(f_t n n n))|^2 = |f_t|^2 / 7: the sampling variances need only these scalars.
-  Tensor4 density4{}, force4{}, shear4{};
+  SymmetricTensor4 density4{}, force4{}, shear4{};
   Eigen::Matrix3d density2 = Eigen::Matrix3d::Zero(), force2 = Eigen::Matrix3d::Zero(),
                   shear2 = Eigen::Matrix3d::Zero();
   double sum_s2 = 0.0, force_squares = 0.0, shear_squares = 0.0;
