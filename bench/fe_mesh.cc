@@ -6,9 +6,14 @@
 // end) and, with --vtu, <case>_NNNN.vtu + <case>.pvd for ParaView.
 //
 //   fe_mesh [--cells N] [--steps S] [--strain E] [--threads T] [--vtu] [--only smooth|rough]
-//           [-o OUT] [PARAMS.json]
+//           [--distributed] [--no-extrapolation] [-o OUT] [PARAMS.json]
 //   (default: 10 cells per side, 100 steps to 0.3, all threads, examples/acst_toyoura.json;
 //    sigma_3 = 100 kPa, e_0 = 0.8, isotropic fabric)
+// --distributed: the mesh split over the MPI processes (DistributedSolid), e.g.
+//   mpirun -np 2 bench/fe_mesh --distributed --threads 1
+// (process 0 prints the table and writes the files). --no-extrapolation: Newton's first iterate
+// without the extrapolated increment (SolverOptions::extrapolate_predictor).
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 
 #include <chrono>
@@ -37,7 +42,7 @@ int main(int argc, char** argv) {
   std::string only;
   unsigned int cells = 10, steps = 100, threads = 0;
   double strain = 0.3;
-  bool vtu = false, verbose = false;
+  bool vtu = false, verbose = false, distributed = false, extrapolate = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -51,6 +56,8 @@ int main(int argc, char** argv) {
       else if (a == "--threads") threads = static_cast<unsigned int>(std::stoul(value()));
       else if (a == "--vtu") vtu = true;
       else if (a == "--verbose") verbose = true;
+      else if (a == "--distributed") distributed = true;
+      else if (a == "--no-extrapolation") extrapolate = false;
       else if (a == "--only") only = value();
       else if (a == "-o") output = value();
       else parameters_path = a;
@@ -59,18 +66,28 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (threads > 0) dealii::MultithreadInfo::set_thread_limit(threads);
+  // MPI for --distributed (a program started without mpirun is one process); the thread limit
+  // applies to each process.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(
+      argc, argv, threads > 0 ? threads : dealii::numbers::invalid_unsigned_int);
+  const unsigned int processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const bool prints = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  if (!prints && !std::freopen("/dev/null", "w", stdout)) return 1;
   try {
     const calibration::Parameters<double> parameters =
         calibration::read_parameters_json(parameters_path);
     fe_model::AcstInitialState initial;
     initial.void_ratio = 0.8;
     const fe_model::AcstMaterial material(parameters, initial);
-    std::filesystem::create_directories(output);
+    if (prints) std::filesystem::create_directories(output);
+    MPI_Barrier(MPI_COMM_WORLD);  // the VTU files are written by every process
     std::printf("fe_mesh: %s, %u^3 Q1 cells (%u points), sigma_3 = 100 kPa, e_0 = 0.8, to axial "
-                "strain %.2f in %u steps, %u threads\n\n",
+                "strain %.2f in %u steps, %u threads%s\n\n",
                 parameters_path.c_str(), cells, 8 * cells * cells * cells, strain, steps,
-                dealii::MultithreadInfo::n_threads());
+                dealii::MultithreadInfo::n_threads(),
+                distributed ? (" per process, distributed over " + std::to_string(processes) +
+                               " processes").c_str()
+                            : "");
     std::fflush(stdout);
     // q/p two ways: from the platen force as a laboratory measures it (q = F/A - sigma_3, the
     // volume average of sigma_zz being F/A exactly), and from the volume averages of all
@@ -89,6 +106,8 @@ int main(int argc, char** argv) {
       options.n_steps = steps;
       options.rough_platens = c.rough;
       options.solver.verbose = verbose;
+      options.distributed = distributed;
+      options.solver.extrapolate_predictor = extrapolate;
       options.csv_path = output + "/" + c.name + ".csv";
       if (vtu) options.vtu_prefix = output + "/" + c.name;
       const auto t0 = std::chrono::steady_clock::now();
@@ -110,6 +129,7 @@ int main(int argc, char** argv) {
                   1e3 * bulge);
       if (!r.completed) std::printf("  %s\n", r.message.c_str());
       std::fflush(stdout);
+      if (!prints) continue;
       std::ofstream profile(output + "/" + c.name + "_bulge.csv");
       profile << "# radial displacement u_x of the outer face x = L along y = 0 at the last step; "
                  "z from mid-height [m]\nz,radial_displacement\n";

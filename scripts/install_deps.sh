@@ -9,6 +9,7 @@ packages=(
   libhdf5-dev hdf5-tools
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  openmpi-bin  # mpiexec, for the distributed-mesh test
   python3 python3-h5py python3-markdown python3-matplotlib python3-numpy
 )
 

@@ -2,7 +2,9 @@
 #include "fe_model/solid.h"
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/work_stream.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
@@ -13,6 +15,9 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_ilu.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -77,10 +82,31 @@ double triaxial_deviator(const SymmetricTensor2& stress) {
   return -stress[2][2] + 0.5 * (stress[0][0] + stress[1][1]);
 }
 
+// This process's rank in a DistributedSolid's communicator, 0 for a Solid (whose program may not
+// have initialised MPI, where asking MPI is an error).
+template <typename LinearAlgebra>
+unsigned int process_rank(MPI_Comm communicator) {
+  if constexpr (LinearAlgebra::kDistributed)
+    return dealii::Utilities::MPI::this_mpi_process(communicator);
+  else
+    return 0;
+}
+
+MPI_Comm communicator_of(const dealii::Triangulation<3>& triangulation, bool distributed) {
+  if (distributed &&
+      !dynamic_cast<const dealii::parallel::DistributedTriangulationBase<3>*>(&triangulation))
+    throw std::invalid_argument(
+        "DistributedSolid needs a parallel::distributed::Triangulation");
+  return triangulation.get_communicator();
+}
+
 }  // namespace
 
-Solid::Solid(const dealii::Triangulation<3>& triangulation, const Material& material,
-             const SymmetricTensor2& initial_stress, const SolverOptions& options)
+template <typename LinearAlgebra>
+BasicSolid<LinearAlgebra>::BasicSolid(const dealii::Triangulation<3>& triangulation,
+                                      const Material& material,
+                                      const SymmetricTensor2& initial_stress,
+                                      const SolverOptions& options)
     : triangulation_(triangulation),
       material_(material),
       initial_stress_(initial_stress),
@@ -88,23 +114,30 @@ Solid::Solid(const dealii::Triangulation<3>& triangulation, const Material& mate
       fe_(dealii::FE_Q<3>(1), 3),
       dof_handler_(triangulation),
       cell_quadrature_(2),
-      face_quadrature_(2) {}
+      face_quadrature_(2),
+      communicator_(communicator_of(triangulation, LinearAlgebra::kDistributed)) {}
 
-void Solid::add_displacement_condition(DisplacementCondition condition) {
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::add_displacement_condition(DisplacementCondition condition) {
   if (!condition.displacement)
     throw std::invalid_argument("DisplacementCondition without a function");
   displacement_conditions_.push_back(std::move(condition));
 }
 
-void Solid::add_traction_condition(TractionCondition condition) {
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::add_traction_condition(TractionCondition condition) {
   if (!condition.traction) throw std::invalid_argument("TractionCondition without a function");
   traction_conditions_.push_back(std::move(condition));
 }
 
-void Solid::setup() {
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::setup() {
   dof_handler_.distribute_dofs(fe_);
+  locally_owned_dofs_ = dof_handler_.locally_owned_dofs();
+  dealii::DoFTools::extract_locally_relevant_dofs(dof_handler_, locally_relevant_dofs_);
 
   constraints_.clear();
+  if constexpr (LinearAlgebra::kDistributed) constraints_.reinit(locally_relevant_dofs_);
   for (const DisplacementCondition& condition : displacement_conditions_) {
     dealii::VectorTools::interpolate_boundary_values(dof_handler_, condition.boundary_id,
                                                      dealii::Functions::ZeroFunction<3>(3),
@@ -112,20 +145,34 @@ void Solid::setup() {
   }
   constraints_.close();
 
-  dealii::DynamicSparsityPattern dsp(dof_handler_.n_dofs(), dof_handler_.n_dofs());
-  dealii::DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
-  sparsity_pattern_.copy_from(dsp);
-  tangent_matrix_.reinit(sparsity_pattern_);
+  if constexpr (LinearAlgebra::kDistributed) {
+    // step-40: each process holds the matrix rows and vector entries of the degrees of freedom it
+    // owns; the ghosted vector adds those its cells read.
+    dealii::TrilinosWrappers::SparsityPattern pattern(locally_owned_dofs_, locally_owned_dofs_,
+                                                      locally_relevant_dofs_, communicator_);
+    dealii::DoFTools::make_sparsity_pattern(
+        dof_handler_, pattern, constraints_, false,
+        process_rank<LinearAlgebra>(communicator_));
+    pattern.compress();
+    tangent_matrix_.reinit(pattern);
+    for (Vector* v : {&solution_, &committed_solution_, &residual_, &last_increment_})
+      v->reinit(locally_owned_dofs_, communicator_);
+    ghosted_.reinit(locally_owned_dofs_, locally_relevant_dofs_, communicator_);
+  } else {
+    dealii::DynamicSparsityPattern dsp(dof_handler_.n_dofs(), dof_handler_.n_dofs());
+    dealii::DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
+    sparsity_pattern_.copy_from(dsp);
+    tangent_matrix_.reinit(sparsity_pattern_);
+    for (Vector* v : {&solution_, &committed_solution_, &residual_, &last_increment_})
+      v->reinit(dof_handler_.n_dofs());
+  }
+  committed_load_ = trial_load_ = last_load_increment_ = 0.0;
 
-  solution_.reinit(dof_handler_.n_dofs());
-  committed_solution_.reinit(dof_handler_.n_dofs());
-  residual_.reinit(dof_handler_.n_dofs());
-  committed_load_ = 0.0;
-
-  // step-44: one PointHistory per quadrature point, attached to the cells.
-  history_.initialize(triangulation_.begin_active(), triangulation_.end(), cell_quadrature_.size());
+  // step-44: one PointHistory per quadrature point, attached to the (locally owned) cells.
   const PointState initial = material_.initial_state(initial_stress_);
   for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    history_.initialize(cell, cell_quadrature_.size());
     for (const auto& point : history_.get_data(cell)) {
       point->start = initial;
       point->end = initial;
@@ -133,14 +180,27 @@ void Solid::setup() {
   }
 }
 
-void Solid::apply_prescribed_displacements(double load, dealii::Vector<double>& u) const {
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::apply_prescribed_displacements(double load, Vector& u) const {
   std::map<dealii::types::global_dof_index, double> values;
   for (const DisplacementCondition& condition : displacement_conditions_) {
     const PrescribedDisplacement function(condition, load);
     dealii::VectorTools::interpolate_boundary_values(dof_handler_, condition.boundary_id, function,
                                                      values, to_mask(condition.components));
   }
-  for (const auto& [dof, value] : values) u[dof] = value;
+  for (const auto& [dof, value] : values)
+    if (locally_owned_dofs_.is_element(dof)) u[dof] = value;
+  u.compress(dealii::VectorOperation::insert);
+}
+
+template <typename LinearAlgebra>
+const typename LinearAlgebra::Vector& BasicSolid<LinearAlgebra>::with_ghosts(const Vector& u) const {
+  if constexpr (LinearAlgebra::kDistributed) {
+    ghosted_ = u;
+    return ghosted_;
+  } else {
+    return u;
+  }
 }
 
 namespace {
@@ -189,19 +249,24 @@ struct AssemblyCopy {
 // step-9): each cell's material updates write only that cell's quadrature-point history, and the
 // copier adds the cell contributions in the cells' order, so the result is the same for any
 // number of threads, bit for bit. A failed point stops the assembly's result (the first failed
-// cell in that order is reported), not the other threads.
-MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, bool with_matrix,
-                               std::string* message) {
+// cell in that order is reported), not the other threads. A DistributedSolid's processes each
+// assemble their own cells; the sums over processes, and the reduction of the statuses, come
+// after every process has finished its cells (they are collective).
+template <typename LinearAlgebra>
+MaterialStatus BasicSolid<LinearAlgebra>::assemble(const Vector& u_owned, double load,
+                                                   bool with_matrix, std::string* message) {
   const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
-  dealii::Vector<double> internal_force(dof_handler_.n_dofs());
+  const Vector& u = with_ghosts(u_owned);
+  Vector internal_force;
+  internal_force.reinit(residual_);
   residual_ = 0.0;
   if (with_matrix) tangent_matrix_ = 0.0;
   MaterialStatus status = MaterialStatus::kOk;
   int unreliable_points = 0;
   bool failed = false;
 
-  auto worker = [&](const typename dealii::DoFHandler<3>::active_cell_iterator& cell,
-                    AssemblyScratch& scratch, AssemblyCopy& copy) {
+  using CellIterator = typename dealii::DoFHandler<3>::active_cell_iterator;
+  auto worker = [&](const CellIterator& cell, AssemblyScratch& scratch, AssemblyCopy& copy) {
     // A fresh FEValues per cell: a reused one skips recomputing the Jacobians when the cell is a
     // translation of the one it saw last (deal.II's CellSimilarity), which changes them in the
     // last bit, and which cell a thread's scratch saw last depends on the scheduling.
@@ -310,8 +375,7 @@ MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, boo
     }
     unreliable_points += copy.unreliable_points;
     status = worst(status, copy.status);
-    for (unsigned int i = 0; i < dofs_per_cell; ++i)
-      internal_force(copy.dof_indices[i]) += copy.cell_internal(i);
+    internal_force.add(copy.dof_indices, copy.cell_internal);
     if (with_matrix) {
       constraints_.distribute_local_to_global(copy.cell_matrix, copy.cell_residual,
                                               copy.dof_indices, tangent_matrix_, residual_);
@@ -320,9 +384,28 @@ MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, boo
     }
   };
 
-  dealii::WorkStream::run(dof_handler_.begin_active(), dof_handler_.end(), worker, copier,
-                          AssemblyScratch(fe_, cell_quadrature_, face_quadrature_),
-                          AssemblyCopy(dofs_per_cell));
+  dealii::WorkStream::run(
+      dealii::filter_iterators(dof_handler_.active_cell_iterators(),
+                               dealii::IteratorFilters::LocallyOwnedCell()),
+      worker, copier, AssemblyScratch(fe_, cell_quadrature_, face_quadrature_),
+      AssemblyCopy(dofs_per_cell));
+  if constexpr (LinearAlgebra::kDistributed) {
+    // Every process takes part, the failed ones included, so that none waits for another.
+    if (with_matrix) tangent_matrix_.compress(dealii::VectorOperation::add);
+    residual_.compress(dealii::VectorOperation::add);
+    internal_force.compress(dealii::VectorOperation::add);
+    const std::vector<std::string> messages = dealii::Utilities::MPI::all_gather(
+        communicator_, failed && message ? *message : std::string());
+    failed = dealii::Utilities::MPI::logical_or(failed, communicator_);
+    if (failed && message) {
+      *message = "";
+      for (unsigned int rank = 0; rank < messages.size() && message->empty(); ++rank)
+        if (!messages[rank].empty()) *message = "process " + std::to_string(rank) + ": " + messages[rank];
+    }
+    unreliable_points = dealii::Utilities::MPI::sum(unreliable_points, communicator_);
+    status = static_cast<MaterialStatus>(
+        dealii::Utilities::MPI::max(static_cast<int>(status), communicator_));
+  }
   last_unreliable_points_ = unreliable_points;
   if (failed) return MaterialStatus::kFailed;
   internal_force_norm_ = internal_force.l2_norm();
@@ -332,18 +415,24 @@ MaterialStatus Solid::assemble(const dealii::Vector<double>& u, double load, boo
   return status;
 }
 
-NewtonLog Solid::solve_increment(double load_end) {
+template <typename LinearAlgebra>
+NewtonLog BasicSolid<LinearAlgebra>::solve_increment(double load_end) {
   NewtonLog log;
   log.load_start = committed_load_;
   log.load_end = load_end;
 
-  // Predictor: the committed displacement with the prescribed values of the new load; Newton
-  // corrections then satisfy homogeneous constraints.
+  // Predictor: the committed displacement, plus (SolverOptions::extrapolate_predictor) the last
+  // converged increment scaled to this one's load increment, with the prescribed values of the
+  // new load; Newton corrections then satisfy homogeneous constraints.
+  trial_load_ = load_end;
   solution_ = committed_solution_;
+  if (options_.extrapolate_predictor && last_load_increment_ != 0.0)
+    solution_.add((load_end - committed_load_) / last_load_increment_, last_increment_);
   apply_prescribed_displacements(load_end, solution_);
 
-  dealii::Vector<double> correction(dof_handler_.n_dofs());
-  dealii::Vector<double> minus_residual(dof_handler_.n_dofs());
+  Vector correction, minus_residual;
+  correction.reinit(solution_);
+  minus_residual.reinit(solution_);
 
   for (int k = 0;; ++k) {
     std::string message;
@@ -358,7 +447,7 @@ NewtonLog Solid::solve_increment(double load_end) {
     const double norm = residual_.l2_norm();
     log.residual_norms.push_back(norm);
     log.force_scale = internal_force_norm_;
-    if (options_.verbose) {
+    if (options_.verbose && process_rank<LinearAlgebra>(communicator_) == 0) {
       std::cout << "    newton " << k << "  |R| = " << std::scientific << std::setprecision(3)
                 << norm;
       if (k > 0) {
@@ -396,24 +485,31 @@ NewtonLog Solid::solve_increment(double load_end) {
   }
 }
 
-bool Solid::uses_iterative_solver() const {
+template <typename LinearAlgebra>
+bool BasicSolid<LinearAlgebra>::uses_iterative_solver() const {
   using LinearSolver = SolverOptions::LinearSolver;
   return options_.linear_solver == LinearSolver::kIterative ||
          (options_.linear_solver == LinearSolver::kAutomatic &&
           dof_handler_.n_dofs() >= options_.iterative_min_dofs);
 }
 
-void Solid::solve_linear(const dealii::Vector<double>& rhs, dealii::Vector<double>& x,
-                         NewtonLog& log) const {
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::solve_linear(const Vector& rhs, Vector& x, NewtonLog& log) const {
   if (uses_iterative_solver()) {
     // GMRES with ILU(0) of the tangent (Saad 2003, §9.3 and §10.3), restarted every 100
-    // iterations. Deterministic: serial, no dependence on the thread count.
-    dealii::SparseILU<double> ilu;
+    // iterations. Deterministic: no dependence on the thread count. Distributed, the ILU is
+    // Ifpack's, of each process's diagonal block (block Jacobi), so the GMRES iterations, not the
+    // answer to linear_rtol, depend on the number of processes.
+    using Preconditioner =
+        std::conditional_t<LinearAlgebra::kDistributed, dealii::TrilinosWrappers::PreconditionILU,
+                           dealii::SparseILU<double>>;
+    Preconditioner ilu;
     ilu.initialize(tangent_matrix_);
-    dealii::SolverControl control(options_.max_linear_iterations, options_.linear_rtol * rhs.l2_norm(), false, false);
+    dealii::SolverControl control(options_.max_linear_iterations,
+                                  options_.linear_rtol * rhs.l2_norm(), false, false);
     // Right preconditioning: the tolerance applies to the true residual of the Newton system.
-    dealii::SolverGMRES<dealii::Vector<double>> gmres(
-        control, dealii::SolverGMRES<dealii::Vector<double>>::AdditionalData(100, true));
+    dealii::SolverGMRES<Vector> gmres(control,
+                                      typename dealii::SolverGMRES<Vector>::AdditionalData(100, true));
     x = 0.0;
     try {
       gmres.solve(tangent_matrix_, x, rhs, ilu);
@@ -425,24 +521,40 @@ void Solid::solve_linear(const dealii::Vector<double>& rhs, dealii::Vector<doubl
       log.linear_iterations.push_back(-1);
     }
   }
-  dealii::SparseDirectUMFPACK direct;
-  direct.initialize(tangent_matrix_);
-  direct.vmult(x, rhs);
+  if constexpr (LinearAlgebra::kDistributed) {
+    // Amesos' KLU on the whole matrix (gathered to one process): for small meshes and fallbacks.
+    dealii::SolverControl control;
+    dealii::TrilinosWrappers::SolverDirect direct(control);
+    direct.solve(tangent_matrix_, x, rhs);
+  } else {
+    dealii::SparseDirectUMFPACK direct;
+    direct.initialize(tangent_matrix_);
+    direct.vmult(x, rhs);
+  }
 }
 
-void Solid::commit() {
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::commit() {
+  last_increment_ = solution_;
+  last_increment_ -= committed_solution_;
+  last_load_increment_ = trial_load_ - committed_load_;
+  committed_load_ = trial_load_;
   committed_solution_ = solution_;
   for (const auto& cell : triangulation_.active_cell_iterators())
-    for (const auto& point : history_.get_data(cell)) point->commit();
+    if (cell->is_locally_owned())
+      for (const auto& point : history_.get_data(cell)) point->commit();
 }
 
-void Solid::revert() {
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::revert() {
   solution_ = committed_solution_;
   for (const auto& cell : triangulation_.active_cell_iterators())
-    for (const auto& point : history_.get_data(cell)) point->revert();
+    if (cell->is_locally_owned())
+      for (const auto& point : history_.get_data(cell)) point->revert();
 }
 
-StepReport Solid::advance_to(double load_target) {
+template <typename LinearAlgebra>
+StepReport BasicSolid<LinearAlgebra>::advance_to(double load_target) {
   StepReport report;
   const double nominal = load_target - committed_load_;
   if (nominal == 0.0) {
@@ -466,7 +578,6 @@ StepReport Solid::advance_to(double load_target) {
     report.attempts.push_back(std::move(log));
     if (converged) {
       commit();
-      committed_load_ = next;
       if (next == load_target) break;
       if (options_.regrow_after_cut && depth > 0) {
         increment *= 2.0;
@@ -487,7 +598,7 @@ StepReport Solid::advance_to(double load_target) {
     ++depth;
     ++report.cuts;
     increment *= 0.5;
-    if (options_.verbose) {
+    if (options_.verbose && process_rank<LinearAlgebra>(communicator_) == 0) {
       std::cout << "  cut: " << failure << "; retrying with load increment " << increment << '\n';
     }
   }
@@ -496,7 +607,8 @@ StepReport Solid::advance_to(double load_target) {
   return report;
 }
 
-VolumeAverages Solid::volume_averages() const {
+template <typename LinearAlgebra>
+VolumeAverages BasicSolid<LinearAlgebra>::volume_averages() const {
   dealii::FEValues<3> fe_values(fe_, cell_quadrature_, dealii::update_JxW_values);
   VolumeAverages averages;
   double fabric_sum = 0.0;
@@ -504,6 +616,7 @@ VolumeAverages Solid::volume_averages() const {
   bool same_size = true;
   bool first = true;
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
     fe_values.reinit(cell);
     const auto history = history_.get_data(cell);
     for (unsigned int q = 0; q < cell_quadrature_.size(); ++q) {
@@ -530,6 +643,25 @@ VolumeAverages Solid::volume_averages() const {
       }
     }
   }
+  if constexpr (LinearAlgebra::kDistributed) {
+    // The sums over the processes (a process may own no cell: it agrees with any size).
+    const MPI_Comm comm = communicator_;
+    const std::size_t size = dealii::Utilities::MPI::max(
+        first ? std::size_t{0} : averages.internal_variables.size(), comm);
+    // (deal.II 9.4 has a logical_or but no logical_and: the minimum of 0/1.)
+    same_size = dealii::Utilities::MPI::min(
+                    int(same_size && (first || averages.internal_variables.size() == size)),
+                    comm) == 1;
+    has_fabric = dealii::Utilities::MPI::min(int(has_fabric), comm) == 1;
+    averages.internal_variables.resize(same_size ? size : 0, 0.0);
+    std::vector<double> sums = averages.internal_variables;
+    dealii::Utilities::MPI::sum(averages.internal_variables, comm, sums);
+    averages.internal_variables = sums;
+    averages.volume = dealii::Utilities::MPI::sum(averages.volume, comm);
+    averages.stress = dealii::Utilities::MPI::sum(averages.stress, comm);
+    averages.strain = dealii::Utilities::MPI::sum(averages.strain, comm);
+    fabric_sum = dealii::Utilities::MPI::sum(fabric_sum, comm);
+  }
   averages.stress /= averages.volume;
   averages.strain /= averages.volume;
   if (has_fabric) averages.fabric_invariant = fabric_sum / averages.volume;
@@ -541,10 +673,12 @@ VolumeAverages Solid::volume_averages() const {
   return averages;
 }
 
-void Solid::for_each_point(
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::for_each_point(
     const std::function<void(const dealii::Point<3>&, const PointState&)>& visit) const {
   dealii::FEValues<3> fe_values(fe_, cell_quadrature_, dealii::update_quadrature_points);
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
     fe_values.reinit(cell);
     const auto history = history_.get_data(cell);
     for (unsigned int q = 0; q < cell_quadrature_.size(); ++q) {
@@ -553,9 +687,43 @@ void Solid::for_each_point(
   }
 }
 
-void Solid::write_vtu(const std::string& filename) const {
+template <typename LinearAlgebra>
+std::vector<VertexDisplacement> BasicSolid<LinearAlgebra>::vertex_displacements(
+    const std::function<bool(const dealii::Point<3>&)>& select) const {
+  const Vector& u = with_ghosts(solution_);
+  // Flat (x, y, z, u_x, u_y, u_z) per vertex, each vertex from the process owning its dofs.
+  std::vector<double> local;
+  std::vector<bool> seen(triangulation_.n_vertices(), false);
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    for (const unsigned int v : cell->vertex_indices()) {
+      if (seen[cell->vertex_index(v)]) continue;
+      seen[cell->vertex_index(v)] = true;
+      if (!select(cell->vertex(v)) || !locally_owned_dofs_.is_element(cell->vertex_dof_index(v, 0)))
+        continue;
+      for (unsigned int d = 0; d < 3; ++d) local.push_back(cell->vertex(v)[d]);
+      for (unsigned int d = 0; d < 3; ++d) local.push_back(u(cell->vertex_dof_index(v, d)));
+    }
+  }
+  std::vector<double> all = local;
+  if constexpr (LinearAlgebra::kDistributed) {
+    all.clear();
+    for (const std::vector<double>& part : dealii::Utilities::MPI::all_gather(communicator_, local))
+      all.insert(all.end(), part.begin(), part.end());
+  }
+  std::vector<VertexDisplacement> vertices(all.size() / 6);
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    for (unsigned int d = 0; d < 3; ++d) {
+      vertices[k].position[d] = all[6 * k + d];
+      vertices[k].displacement[d] = all[6 * k + 3 + d];
+    }
+  return vertices;
+}
+
+template <typename LinearAlgebra>
+void BasicSolid<LinearAlgebra>::write_vtu(const std::string& filename) const {
   const unsigned int n_cells = triangulation_.n_active_cells();
-  dealii::Vector<double> p(n_cells), q(n_cells), volumetric_strain(n_cells);
+  dealii::Vector<double> p(n_cells), q(n_cells), volumetric_strain(n_cells), process(n_cells);
   std::array<dealii::Vector<double>, 6> components;
   for (auto& c : components) c.reinit(n_cells);
   const std::array<std::pair<unsigned int, unsigned int>, 6> index = {
@@ -563,6 +731,7 @@ void Solid::write_vtu(const std::string& filename) const {
   const std::array<const char*, 6> names = {
       {"stress_xx", "stress_yy", "stress_zz", "stress_xy", "stress_xz", "stress_yz"}};
   for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
     const auto history = history_.get_data(cell);
     SymmetricTensor2 stress, strain;
     for (const auto& point : history) {
@@ -575,6 +744,7 @@ void Solid::write_vtu(const std::string& filename) const {
     p(c) = mean_pressure(stress);
     q(c) = triaxial_deviator(stress);
     volumetric_strain(c) = -dealii::trace(strain);
+    process(c) = process_rank<LinearAlgebra>(communicator_);
     for (unsigned int k = 0; k < 6; ++k)
       components[k](c) = -stress[index[k].first][index[k].second];
   }
@@ -584,8 +754,8 @@ void Solid::write_vtu(const std::string& filename) const {
   const std::vector<std::string> displacement_names(3, "displacement");
   const std::vector<dealii::DataComponentInterpretation::DataComponentInterpretation>
       interpretation(3, dealii::DataComponentInterpretation::component_is_part_of_vector);
-  data_out.add_data_vector(solution_, displacement_names, dealii::DataOut<3>::type_dof_data,
-                           interpretation);
+  data_out.add_data_vector(with_ghosts(solution_), displacement_names,
+                           dealii::DataOut<3>::type_dof_data, interpretation);
   data_out.add_data_vector(p, "p", dealii::DataOut<3>::type_cell_data);
   data_out.add_data_vector(q, "q", dealii::DataOut<3>::type_cell_data);
   data_out.add_data_vector(volumetric_strain, "volumetric_strain",
@@ -593,10 +763,19 @@ void Solid::write_vtu(const std::string& filename) const {
   for (unsigned int k = 0; k < 6; ++k) {
     data_out.add_data_vector(components[k], names[k], dealii::DataOut<3>::type_cell_data);
   }
-  data_out.build_patches();
-  std::ofstream out(filename);
-  if (!out) throw std::runtime_error("cannot open " + filename + " for writing");
-  data_out.write_vtu(out);
+  if constexpr (LinearAlgebra::kDistributed) {
+    data_out.add_data_vector(process, "process", dealii::DataOut<3>::type_cell_data);
+    data_out.build_patches();  // of the locally owned cells
+    data_out.write_vtu_in_parallel(filename, communicator_);
+  } else {
+    data_out.build_patches();
+    std::ofstream out(filename);
+    if (!out) throw std::runtime_error("cannot open " + filename + " for writing");
+    data_out.write_vtu(out);
+  }
 }
+
+template class BasicSolid<SerialLinearAlgebra>;
+template class BasicSolid<DistributedLinearAlgebra>;
 
 }  // namespace fe_model

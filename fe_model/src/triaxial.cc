@@ -1,8 +1,8 @@
 // The triaxial boundary-value problem of triaxial.h on top of Solid.
 #include "fe_model/triaxial.h"
 
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <iostream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "fe_model/solid.h"
 #include "sffcal/pvd.h"
@@ -41,7 +42,8 @@ void check(const TriaxialOptions& o) {
   if (o.solver.max_linear_iterations == 0) fail("solver.max_linear_iterations must be >= 1");
 }
 
-TriaxialStep measure(const Solid& solid, unsigned int step) {
+template <typename SolidType>
+TriaxialStep measure(const SolidType& solid, unsigned int step) {
   const VolumeAverages averages = solid.volume_averages();
   TriaxialStep row;
   row.step = step;
@@ -57,16 +59,15 @@ TriaxialStep measure(const Solid& solid, unsigned int step) {
   return row;
 }
 
-// u_x at the support points of the edge x = L, y = 0 (the outer face's radial displacement).
-std::vector<BulgePoint> bulge_profile(const Solid& solid, double L) {
-  std::map<dealii::types::global_dof_index, dealii::Point<3>> support;
-  dealii::DoFTools::map_dofs_to_support_points(dealii::StaticMappingQ1<3>::mapping,
-                                               solid.dof_handler(), support,
-                                               dealii::ComponentMask({true, false, false}));
+// u_x at the vertices of the edge x = L, y = 0 (the outer face's radial displacement).
+template <typename SolidType>
+std::vector<BulgePoint> bulge_profile(const SolidType& solid, double L) {
   std::map<double, double> profile;  // z -> u_x
-  for (const auto& [dof, x] : support)
-    if (std::abs(x[0] - L) < 1e-9 * L && std::abs(x[1]) < 1e-9 * L)
-      profile[x[2]] = solid.solution()[dof];
+  for (const VertexDisplacement& vertex :
+       solid.vertex_displacements([L](const dealii::Point<3>& x) {
+         return std::abs(x[0] - L) < 1e-9 * L && std::abs(x[1]) < 1e-9 * L;
+       }))
+    profile[vertex.position[2]] = vertex.displacement[0];
   std::vector<BulgePoint> points;
   for (const auto& [z, u] : profile) points.push_back({z, u});
   return points;
@@ -78,19 +79,20 @@ std::string vtu_name(const std::string& prefix, unsigned int step) {
   return prefix + buffer;
 }
 
-}  // namespace
-
-TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& options) {
-  check(options);
+// The test on `triangulation` (empty) with a SolidType (Solid or DistributedSolid).
+template <typename SolidType>
+TriaxialResult run_on(dealii::Triangulation<3>& triangulation, const Material& material,
+                      const TriaxialOptions& options) {
   const double L = options.width, H = options.height, p0 = options.confining_pressure;
-
-  dealii::Triangulation<3> triangulation;
   dealii::GridGenerator::subdivided_hyper_rectangle(
       triangulation, {options.cells_x, options.cells_y, options.cells_z}, dealii::Point<3>(0, 0, 0),
       dealii::Point<3>(L, L, H), /*colorize=*/true);
+  const bool writes_serial_files =
+      !std::is_same_v<SolidType, DistributedSolid> ||
+      dealii::Utilities::MPI::this_mpi_process(triangulation.get_communicator()) == 0;
 
   const SymmetricTensor2 initial_stress = -p0 * dealii::unit_symmetric_tensor<3>();
-  Solid solid(triangulation, material, initial_stress, options.solver);
+  SolidType solid(triangulation, material, initial_stress, options.solver);
 
   auto zero = [](const dealii::Point<3>&, double) { return dealii::Tensor<1, 3>(); };
   solid.add_displacement_condition({kXMin, {{true, false, false}}, zero});
@@ -125,7 +127,7 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
 
   for (unsigned int step = 1; step <= options.n_steps; ++step) {
     const double load = static_cast<double>(step) / options.n_steps;
-    if (options.solver.verbose) {
+    if (options.solver.verbose && writes_serial_files) {
       std::cout << "step " << step << ": axial strain " << load * strain_end << '\n';
     }
     StepReport report = solid.advance_to(load);
@@ -149,6 +151,7 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
   }
   result.completed = result.message.empty();
   result.bulge = bulge_profile(solid, L);
+  if (!writes_serial_files) return result;
   if (!options.csv_path.empty()) write_triaxial_csv(options.csv_path, result.steps);
   if (!options.vtu_prefix.empty()) {
     std::vector<double> times;
@@ -156,6 +159,21 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
     sffcal::write_pvd(options.vtu_prefix + ".pvd", vtu_files, times, "axial strain (compression positive)");
   }
   return result;
+}
+
+}  // namespace
+
+TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& options) {
+  check(options);
+  if (options.distributed) {
+    if (!dealii::Utilities::MPI::job_supports_mpi())
+      throw std::invalid_argument("TriaxialOptions: distributed needs MPI initialised (e.g. by "
+                                  "dealii::Utilities::MPI::MPI_InitFinalize in main)");
+    dealii::parallel::distributed::Triangulation<3> triangulation(MPI_COMM_WORLD);
+    return run_on<DistributedSolid>(triangulation, material, options);
+  }
+  dealii::Triangulation<3> triangulation;
+  return run_on<Solid>(triangulation, material, options);
 }
 
 void write_triaxial_csv(const std::string& path, const std::vector<TriaxialStep>& steps) {

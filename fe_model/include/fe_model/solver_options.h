@@ -23,6 +23,12 @@ struct SolverOptions {
   int max_cuts = 12;
   /// After a successful cut step the increment is doubled again, up to the nominal one.
   bool regrow_after_cut = true;
+  /// Newton's first iterate: the committed displacement plus the last converged increment scaled
+  /// to the new load increment (a secant extrapolation along the path), with the new boundary
+  /// values. Without it the first iterate moves only the loaded boundary, so in a mesh the cells
+  /// next to it take the whole increment at first. The converged answer is the same to the
+  /// Newton tolerance; the iterations are fewer on a smooth path.
+  bool extrapolate_predictor = true;
   /// Treat kUnreliable material updates like failures (cut the step) instead of accepting them.
   bool cut_on_unreliable = false;
   /// Mean dilatation (B-bar) in the Q1 cells: the volumetric strain is the cell's mean. Q1 with

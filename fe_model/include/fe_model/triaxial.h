@@ -40,6 +40,12 @@ struct TriaxialOptions {
   double axial_strain_end = 0.01;     ///< final axial strain, compression positive
   unsigned int n_steps = 10;          ///< equal axial strain increments
   bool rough_platens = false;  ///< the top face held radially (see above); smooth otherwise
+  /// Distribute the mesh over the processes of MPI_COMM_WORLD (a p4est
+  /// parallel::distributed::Triangulation with Trilinos linear algebra: DistributedSolid). MPI must
+  /// be initialised (e.g. dealii::Utilities::MPI::MPI_InitFinalize in main) and every process
+  /// calls run_triaxial with the same options; each gets the whole result, the files are written
+  /// once (the CSV and PVD by process 0, each VTU by all together).
+  bool distributed = false;
   SolverOptions solver;
   std::string csv_path;    ///< if not empty: one CSV row per converged step (and the initial state)
   /// If not empty: <prefix>_<step, 4 digits>.vtu per converged step and <prefix>.pvd, the
