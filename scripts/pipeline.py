@@ -13,30 +13,17 @@ examples/matrix_scene.toml, the paper-size matrix) names the specimens. Outputs 
 report/report.md (+ report.html). See docs/pipeline.md.
 """
 import argparse
-import importlib.util
 import os
-import subprocess
 import sys
 import time
 import tomllib
 
 from pipeline_tasks import Runner, StageFailed, Task
+from sffcal import matrix as specimen_matrix
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 STAGES = ["prepare", "triaxial", "sff", "calibrate", "fe-check", "report"]
 PY = sys.executable
-
-
-def load_make_configs():
-    """bench/matrix/make_configs.py as a module: the matrix's specimen names and set_key."""
-    path = os.path.join(ROOT, "bench", "matrix", "make_configs.py")
-    spec = importlib.util.spec_from_file_location("make_configs", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-MAKE_CONFIGS = load_make_configs()
 
 
 def read_scene(path):
@@ -45,12 +32,12 @@ def read_scene(path):
             scene = tomllib.load(f)
     except (OSError, tomllib.TOMLDecodeError) as e:
         raise StageFailed(f"scene {path}: {e}")
-    known = [name for name, _ in MAKE_CONFIGS.matrix()]
+    known = [name for name, _ in specimen_matrix.matrix()]
     for key in ("calibrate_on", "held_back", "other_paths"):
         for name in scene.get(key, []):
             if name not in known:
                 raise StageFailed(f"scene {path}: {key} names '{name}', not a specimen of the matrix "
-                                  f"(bench/matrix/make_configs.py): {', '.join(known)}")
+                                  f"(python/sffcal/matrix.py): {', '.join(known)}")
     if not scene.get("calibrate_on"):
         raise StageFailed(f"scene {path}: 'calibrate_on' must name at least one specimen")
     if scene.get("matrix") and (scene.get("dem") or scene.get("seed", 1) != 1):
@@ -74,25 +61,27 @@ class Pipeline:
         return self.path("runs", name + ".h5")
 
     def write_configs(self):
-        """Specimen configs from make_configs.py plus the scene's [dem] keys (cheap, every start;
+        """The scene's specimen configs (sffcal.matrix) plus its [dem] keys (cheap, every start;
         the records compare contents, so rewriting an unchanged config reruns nothing)."""
         folder = self.path("configs")
-        subprocess.run([PY, os.path.join(ROOT, "bench", "matrix", "make_configs.py"), folder,
-                        "--bodies", str(self.scene.get("bodies", 400)),
-                        "--seed", str(self.scene.get("seed", 1))], check=True, stdout=subprocess.DEVNULL)
+        os.makedirs(folder, exist_ok=True)
+        with open(specimen_matrix.TEMPLATE) as f:
+            template = f.read()
+        specimens = dict(specimen_matrix.matrix())
         dem = self.scene.get("dem", {})
         for name in self.scene["specimens"]:
-            path = os.path.join(folder, name + ".toml")
-            text = open(path).read()
+            text = specimen_matrix.specimen_config(template, name, specimens[name],
+                                                   bodies=self.scene.get("bodies", 400),
+                                                   seed=self.scene.get("seed", 1))
             # the keys of every specimen, then those of a [dem.<specimen>] table
             keys = [(k, v) for k, v in dem.items() if not isinstance(v, dict)] + \
                 list(dem.get(name, {}).items())
             for key, value in keys:
                 try:
-                    text = MAKE_CONFIGS.set_key(text, key, value)
-                except SystemExit as e:  # make_configs.py's own error: the key is unknown
-                    raise StageFailed(f"scene {self.args.scene}: [dem] {e}")
-            with open(path, "w") as f:
+                    text = specimen_matrix.set_key(text, key, value)
+                except KeyError as e:  # the template has no such key
+                    raise StageFailed(f"scene {self.args.scene}: [dem] {e.args[0]}")
+            with open(os.path.join(folder, name + ".toml"), "w") as f:
                 f.write(text)
 
     def tasks(self, stage):
@@ -112,7 +101,7 @@ class Pipeline:
         if stage == "triaxial":
             if self.scene.get("matrix"):
                 script = os.path.join(ROOT, "bench", "matrix", "run_matrix.sh")
-                return [Task(stage, "matrix", [script, MAKE_CONFIGS.TEMPLATE], runs,
+                return [Task(stage, "matrix", [script, specimen_matrix.TEMPLATE], runs,
                              # absolute: run_matrix.sh works from the repository root
                              [[script, os.path.abspath(self.path("runs")), str(self.runner.jobs),
                                str(self.scene["bodies"])]],

@@ -21,6 +21,8 @@ import h5py
 import markdown
 import numpy as np
 
+from sffcal import runfile
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 STAGES = ["prepare", "triaxial", "sff", "calibrate", "fe-check"]
 
@@ -70,18 +72,17 @@ def stage_times(out):
 
 def run_row(path, role):
     with h5py.File(path, "r") as f:
-        s = f["series"]
-        eps_a, eta, e = s["axial_strain"][:], s["eta"][:], s["void_ratio"][:]
-        eps_v, sigma3 = s["volumetric_strain"][:], s["sigma_3"][:]
-        inertial = s["inertial_number"][:]
-        config = f.attrs.get("config", "")
-        config = config.decode() if isinstance(config, bytes) else config
-        path_name = f["loading"].attrs["path"] if "loading" in f else "drained_compression"
+        s = runfile.series(f, ["axial_strain", "eta", "void_ratio", "volumetric_strain", "sigma_3",
+                               "inertial_number"])
+        config = runfile.config_text(f)
+        path_name = runfile.loading_path(f)
+    eps_a, eta, e = s["axial_strain"], s["eta"], s["void_ratio"]
+    eps_v, sigma3, inertial = s["volumetric_strain"], s["sigma_3"], s["inertial_number"]
     bodies = re.search(r"^bodies\s*=\s*(\d+)", config, re.M)
-    strain = np.abs(eps_a)  # extension: eps_a < 0, q/p < 0, its peak the most negative
-    last = strain >= strain[-1] - 0.05  # the last 5 % of axial strain
+    # extension: eps_a < 0, q/p < 0, its peak the most negative
+    last = runfile.end_window(eps_a)  # the last 5 % of axial strain
     k = int(np.argmax(np.abs(eta)))
-    return (os.path.basename(path)[:-3], role, path_name, bodies.group(1) if bodies else "?",
+    return (runfile.name_of(path), role, path_name, bodies.group(1) if bodies else "?",
             f"{sigma3[0] / 1e3:.0f}", f"{e[0]:.3f}",
             f"{eta[k]:.3f} at {100 * eps_a[k]:.1f} %", f"{eta[last].mean():.3f}", f"{e[last].mean():.3f}",
             f"{100 * eps_v[-1]:.1f}", f"{100 * eps_a[-1]:.1f}", f"{inertial.max():.1e}", f"{eta.min():.2f}")

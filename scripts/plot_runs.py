@@ -6,13 +6,14 @@ calibration) dashed.
 usage: plot_runs.py RUN.h5 [...] -o OUT.png [--held-back RUN.h5 ...]
 """
 import argparse
-import os
 
 import h5py
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from sffcal import runfile  # noqa: E402
 
 
 def main():
@@ -24,11 +25,11 @@ def main():
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
     for k, path in enumerate(args.runs + args.held_back):
         with h5py.File(path, "r") as f:
-            s = f["series"]
-            eps_a, eta = 100 * s["axial_strain"][:], s["eta"][:]
-            eps_v, e = 100 * s["volumetric_strain"][:], s["void_ratio"][:]
+            s = runfile.series(f, ["axial_strain", "eta", "volumetric_strain", "void_ratio"])
+        eps_a, eta = 100 * s["axial_strain"], s["eta"]
+        eps_v, e = 100 * s["volumetric_strain"], s["void_ratio"]
         style = dict(color=f"C{k}", ls="--" if path in args.held_back else "-", lw=1.2)
-        label = os.path.basename(path)[:-3] + (" (held back)" if path in args.held_back else "")
+        label = runfile.name_of(path) + (" (held back)" if path in args.held_back else "")
         axes[0].plot(eps_a, eta, label=label, **style)
         axes[1].plot(eps_a, eps_v, **style)
         axes[2].plot(eps_a, e, **style)

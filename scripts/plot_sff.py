@@ -14,7 +14,6 @@ python3-matplotlib (Debian).
 import argparse
 import os
 import sys
-import tomllib
 
 import h5py
 import matplotlib
@@ -23,41 +22,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-
-def table(f, name):
-    if f"analysis/{name}" not in f:
-        sys.exit(f"{f.filename}: no /analysis/{name}; run `sffcal sff {f.filename}` first")
-    g = f[f"analysis/{name}"]
-    return {k: g[k][()] for k in g}
-
-
-def friction(f):
-    """The grains' friction while shearing: /physics of a schema-2 run file; a schema-1 file's
-    stored config with that schema's default, tan 30 deg (as runfile/src/stored_physics.cc)."""
-    if "physics" in f:
-        return float(f["physics"].attrs["friction"])
-    text = f.attrs.get("config", "")
-    if isinstance(text, bytes):
-        text = text.decode()
-    return float(tomllib.loads(text).get("contact", {}).get("friction", 0.5773502691896257))
-
-
-def draw_decomposition(ax, sff, mu, legend=True):
-    """q/p against axial strain [%] over the stacked SFF terms (2/5)a_c, (2/5)a_n, (3/5)mu m (all
-    about z, so an extension test's terms are negative), with eta_SFF and the decoupled eta."""
-    eps = 100 * sff["axial_strain"]
-    fabric, force = 0.4 * sff["a_c"], 0.4 * sff["a_n"]
-    mobilisation = 0.6 * mu * sff["m"]
-    labels = ["fabric (2/5) a_c", "normal force (2/5) a_n", "mobilisation (3/5) mu m"]
-    ax.stackplot(eps, fabric, force, mobilisation, alpha=0.35, labels=labels)
-    ax.plot(eps, sff["eta"], "k-o", ms=3, label="eta, contacts")
-    ax.plot(eps, sff["eta_sff"], "r--", label="eta_SFF (full tensor equation)")
-    ax.plot(eps, sff["eta_decoupled"], "b-.", label="eta decoupled")
-    ax.set_xlabel("axial strain [%]")
-    ax.set_ylabel("stress ratio q/p [-]")
-    ax.grid(alpha=0.3)
-    if legend:
-        ax.legend(fontsize=8, loc="best")
+from sffcal.runfile import RunFileError, friction, table  # noqa: E402
+from sffcal.sff_plots import draw_decomposition  # noqa: E402
 
 
 def plot_eta(run, sff, mu, path):
@@ -137,7 +103,10 @@ def main():
     for path in args.runs:
         run = os.path.splitext(os.path.basename(path))[0]
         with h5py.File(path, "r") as f:
-            sff, rose, mu = table(f, "sff"), table(f, "sff_rose"), friction(f)
+            try:
+                sff, rose, mu = table(f, "sff"), table(f, "sff_rose"), friction(f)
+            except RunFileError as e:
+                sys.exit(str(e))
         if len(sff["eta"]) == 0:
             sys.exit(f"{path}: the SFF table is empty")
         plot_eta(run, sff, mu, os.path.join(folder, f"{run}_eta.png"))

@@ -18,8 +18,7 @@ import os
 import re
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from run_sweep import CASES, SEEDS, case_keys  # noqa: E402
+from run_sweep import CASES, SEEDS, case_keys  # a sibling: this script's folder is on the path
 
 MAX_SEED = 20  # seeds looked for beyond SEEDS
 MEASURES = (("peak_eta", "peak η"), ("critical_eta", "critical η"), ("ev_10", "ε_v at 10 %"),

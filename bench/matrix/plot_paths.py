@@ -14,7 +14,6 @@ the critical state where the run reached it (the table says which).
 import argparse
 import glob
 import os
-import sys
 
 import h5py
 import matplotlib
@@ -23,23 +22,21 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from plot_sff import draw_decomposition  # noqa: E402
+from sffcal import runfile  # noqa: E402
+from sffcal.sff_plots import draw_decomposition  # noqa: E402
 
 
 def read(path):
     with h5py.File(path, "r") as f:
-        s = f["series"]
-        run = {k: s[k][()] for k in ("axial_strain", "volumetric_strain", "p", "q", "eta")}
-        run["path"] = f["loading"].attrs["path"] if "loading" in f else "drained_compression"
-        run["ended"] = f["summary"].attrs["ended"] if "summary" in f else "?"
-        run["e0"] = s["void_ratio"][0]
-        run["mu"] = float(f["physics"].attrs["friction"]) if "physics" in f else None
+        run = runfile.series(f, ["axial_strain", "volumetric_strain", "p", "q", "eta", "void_ratio"])
+        run["path"] = runfile.loading_path(f)
+        run["ended"] = runfile.summary(f).get("ended", "?")
+        run["e0"] = run["void_ratio"][0]
+        run["mu"] = runfile.friction(f) if "physics" in f else None
         if "analysis/sff" in f:
-            run["sff"] = {k: v[()] for k, v in f["analysis/sff"].items()}
-    run["name"] = os.path.basename(path)[:-3]
-    strain = np.abs(run["axial_strain"])
-    last = strain >= strain[-1] - 0.05
+            run["sff"] = runfile.table(f, "sff")
+    run["name"] = runfile.name_of(path)
+    last = runfile.end_window(run["axial_strain"])
     run["final_eta"] = float(np.mean(run["eta"][last]))
     k = int(np.argmax(np.abs(run["eta"]) * (run["p"] > 0.01 * run["p"][0])))
     run["peak"] = (float(run["eta"][k]), float(run["axial_strain"][k]))

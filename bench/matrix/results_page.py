@@ -14,29 +14,22 @@ last 5 % of axial strain and the anisotropies of the last snapshot.
 import argparse
 import glob
 import os
-import sys
 
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-import sff_table  # noqa: E402
+from sffcal import runfile, sff_table
 
 
 def load(path):
     with h5py.File(path, "r") as f:
-        s = {k: f["series"][k][:] for k in ("axial_strain", "eta", "void_ratio", "volumetric_strain")}
-        a = {k: f["analysis/sff"][k][:] for k in ("axial_strain", "a_c", "a_n", "a_t", "m", "eta")}
-        if "summary" in f:  # schema 2: how the test ended, as attributes
-            ended = {"critical_state": "critical state reached",
-                     "max_axial_strain": "maximum axial strain reached"}[f["summary"].attrs["ended"]]
-        else:  # schema 1: the summary note's first clause
-            note = f.attrs.get("note:summary", "")
-            ended = (note.decode() if isinstance(note, bytes) else str(note)).split(";")[0]
-    name = os.path.basename(path)[:-3]
+        s = runfile.series(f, ["axial_strain", "eta", "void_ratio", "volumetric_strain"])
+        a = runfile.table(f, "sff", ["axial_strain", "a_c", "a_n", "a_t", "m", "eta"])
+        ended = runfile.ended(f)
+    name = runfile.name_of(path)
     peak = int(np.argmax(s["eta"]))
     near = int(np.argmin(np.abs(a["axial_strain"] - s["axial_strain"][peak])))
-    end = s["axial_strain"] >= s["axial_strain"][-1] - 0.05
+    end = runfile.end_window(s["axial_strain"])
     kind, density = name.split("_")[:2]
     pressure = float(name.split("_")[2][:-3]) if kind == "iso" else 100.0
     angle = float(name.split("_a")[-1]) if kind == "dep" else None
@@ -147,7 +140,7 @@ def main():
     order = {"iso": 0, "dep": 1}
     runs.sort(key=lambda r: (order[r["kind"]], ["dense", "medium", "loose"].index(r["density"]), r["pressure"],
                              r["angle"] or 0))
-    sff_table.main([os.path.join(args.folder, r["name"] + ".h5") for r in runs])
+    sff_table.print_table([os.path.join(args.folder, r["name"] + ".h5") for r in runs])
     series_table(runs)
     influences(runs)
     if args.img:

@@ -12,17 +12,17 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from sffcal import runfile  # noqa: E402
+
 
 def main(run_path, png_path):
     with h5py.File(run_path, "r") as f:
-        s = f["series"]
-        eps_a = s["axial_strain"][:] * 100.0
-        eta = s["eta"][:]
-        eta_c = s["contact_q"][:] / s["contact_p"][:]
-        eps_v = s["volumetric_strain"][:] * 100.0
-        e = s["void_ratio"][:]
-        summary = (dict(f["summary"].attrs) if "summary" in f  # schema 2
-                   else f.attrs.get("note:summary", ""))
+        s = runfile.series(f, ["axial_strain", "eta", "contact_q", "contact_p", "volumetric_strain",
+                               "void_ratio"])
+        summary = runfile.summary(f) or runfile.ended(f)  # schema 2 attributes, or schema 1's note
+    eps_a, eta, e = s["axial_strain"] * 100.0, s["eta"], s["void_ratio"]
+    eta_c = s["contact_q"] / s["contact_p"]
+    eps_v = s["volumetric_strain"] * 100.0
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     axes[0].plot(eps_a, eta, label="walls")
     axes[0].plot(eps_a, eta_c, "--", label="contacts (Love-Weber)")

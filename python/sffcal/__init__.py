@@ -1,0 +1,13 @@
+"""sffcal's Python side: one package for the scripts of scripts/ and bench/.
+
+- runfile: reading a run file (the series, /summary, /physics, /loading and the analysis tables),
+  with the names of the C++ runfile library, and the CSV tables the commands write;
+- matrix: the specimens of the reference test matrix and the config writer behind
+  bench/matrix/make_configs.py and the pipeline;
+- sff_table: the Markdown table of SFF results of several runs;
+- sff_plots: drawings shared by several scripts (the SFF decomposition of q/p).
+
+The scripts import it as `sffcal`: each script folder has a `sffcal` link to python/sffcal (Python
+puts a script's own folder first on its path), and any other program can add python/ to
+PYTHONPATH.
+"""
