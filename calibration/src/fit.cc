@@ -3,6 +3,7 @@
 
 #include "fit_path.h"
 #include "fit_solve.h"
+#include "sffcal/final_window.h"
 
 #include <ceres/ceres.h>
 
@@ -320,16 +321,18 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
   for (const TestData& t : tests) {
     CriticalStatePoint c;
     c.test = t.name;
-    const double from = t.axial_strain.back() - options.critical_window;
+    const std::size_t from = sffcal::final_window_start(t.axial_strain, options.critical_window);
     std::vector<double> p, e, eta, a;
-    for (std::size_t k = 0; k < t.axial_strain.size(); ++k)
-      if (t.axial_strain[k] >= from) {
-        p.push_back(t.p[k]);
-        e.push_back(t.void_ratio[k]);
-        eta.push_back(t.eta[k]);
-      }
-    for (std::size_t k = 0; k < t.a_c.size(); ++k)
-      if (t.snapshot_axial_strain[k] >= from) a.push_back(t.a_c[k]);
+    for (std::size_t k = from; k < t.axial_strain.size(); ++k) {
+      p.push_back(t.p[k]);
+      e.push_back(t.void_ratio[k]);
+      eta.push_back(t.eta[k]);
+    }
+    // The snapshots within the same window (of the series' last strain).
+    for (std::size_t k = sffcal::final_window_start(t.snapshot_axial_strain, t.axial_strain.back(),
+                                                    options.critical_window);
+         k < t.a_c.size(); ++k)
+      a.push_back(t.a_c[k]);
     if (a.empty()) a.push_back(t.a_c.back());
     c.p = mean(p);
     c.void_ratio = mean(e);

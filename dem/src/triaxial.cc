@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "sffcal/final_window.h"
+
 namespace dem {
 namespace {
 
@@ -52,13 +54,12 @@ double fitted_change(const std::vector<double>& x, const std::vector<double>& y,
 bool stationary_over_window(const std::vector<double>& strain, const std::vector<double>& eta,
                             const std::vector<double>& second, double second_tolerance,
                             const TriaxialOptions& options, std::size_t* window_start) {
-  std::size_t start = strain.size();
   if (strain.empty()) {
     if (window_start) *window_start = 0;
     return false;
   }
   const double last = strain.back();
-  while (start > 0 && last - strain[start - 1] <= options.critical_window) --start;
+  const std::size_t start = sffcal::final_window_start(strain, options.critical_window);
   const bool full_window = start > 0;
   if (window_start) *window_start = full_window ? start : strain.size();
   if (!full_window || last < options.critical_min_strain) return false;

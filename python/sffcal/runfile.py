@@ -113,6 +113,7 @@ def read_sff(path):
 
 def end_window(axial_strain, width=0.05):
     """The rows over the last `width` of axial strain (the end of a test: its critical-state
-    estimate in the reports), as a boolean mask; |axial strain|, so extension alike."""
+    estimate in the reports), as a boolean mask; |axial strain|, so extension alike. The rule of
+    the C++ side's sffcal::final_window_start (common/include/sffcal/final_window.h)."""
     strain = np.abs(axial_strain)
-    return strain >= strain[-1] - width
+    return strain[-1] - strain <= width

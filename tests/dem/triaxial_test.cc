@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include "sffcal/final_window.h"
 #include "specimen_fixture.h"
 
 namespace dem {
@@ -164,6 +165,21 @@ TEST(CriticalState, FoundThroughFluctuationsButNotOnATrend) {
   // Not before critical_min_strain, whatever the data.
   options.critical_min_strain = 0.6;
   EXPECT_FALSE(is_critical_state(flat.strain, flat.eta, flat.volume, options));
+}
+
+// The one final-window rule of the DEM, calibration and the scripts: the rows within the width of
+// the last strain, boundary included.
+TEST(FinalWindow, HoldsTheRowsWithinTheWidthOfTheLastStrain) {
+  const std::vector<double> strain = {0.0, 0.1, 0.2, 0.25, 0.3};
+  EXPECT_EQ(sffcal::final_window_start(strain, 0.1), 2u);   // 0.3 - 0.2 <= 0.1
+  EXPECT_EQ(sffcal::final_window_start(strain, 0.07), 3u);  // 0.2 is outside
+  EXPECT_EQ(sffcal::final_window_start(strain, 0.0), 4u);   // the last row only
+  EXPECT_EQ(sffcal::final_window_start(strain, 1.0), 0u);   // the whole test
+  EXPECT_EQ(sffcal::final_window_start(std::vector<double>{}, 0.1), 0u);
+  // Another series (snapshots) within the window of the series' last strain.
+  const std::vector<double> snapshots = {0.0, 0.15, 0.22, 0.29};
+  EXPECT_EQ(sffcal::final_window_start(snapshots, 0.3, 0.1), 2u);
+  EXPECT_EQ(sffcal::final_window_start(snapshots, 0.5, 0.1), 4u);  // none within
 }
 
 TEST(Triaxial, InertialNumberUsesTheScaledDensity) {
