@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sffcal/clump_geometry.h"
 #include "sffcal/constants.h"
 
 namespace dem {
@@ -11,9 +12,8 @@ namespace {
 using sffcal::kPi;
 
 // Antiderivatives in u = z - s/2 (the distance from the nearer sphere centre along the axis)
-// of the slice integrands, with slice radius^2 = r^2 - u^2 and h = s/2.
-double slice_area_integral(double r, double u) { return r * r * u - u * u * u / 3.0; }
-
+// of the slice integrands, with slice radius^2 = r^2 - u^2 and h = s/2 (the area's own,
+// sffcal::sphere_slice_area_integral, with the volume in common/include/sffcal/clump_geometry.h).
 double slice_area_squared_integral(double r, double u) {
   const double u3 = u * u * u;
   return r * r * r * r * u - 2.0 * r * r * u3 / 3.0 + u3 * u * u / 5.0;
@@ -39,12 +39,11 @@ MassProperties two_sphere_union_properties(double radius, double centre_distance
   const double r = radius, h = 0.5 * centre_distance;
   // Each half (z >= 0) is the slab u in [-h, r] of the sphere centred at z = h.
   auto span = [&](auto&& antiderivative) { return antiderivative(r) - antiderivative(-h); };
-  const double area = span([&](double u) { return slice_area_integral(r, u); });
   const double area2 = span([&](double u) { return slice_area_squared_integral(r, u); });
   const double area_z2 = span([&](double u) { return slice_area_times_z2_integral(r, h, u); });
 
   MassProperties p;
-  p.volume = 2.0 * kPi * area;
+  p.volume = sffcal::two_sphere_union_volume(r, centre_distance);
   p.mass = density * p.volume;
   // A disc of radius a and mass dm: a^2 dm / 2 about its axis, a^2 dm / 4 about a diameter.
   p.inertia_axial = 2.0 * density * kPi * area2 / 2.0;

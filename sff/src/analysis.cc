@@ -12,11 +12,6 @@
 
 namespace sff {
 
-double clump_volume(double radius, double centre_distance) {
-  const double r = radius, s = centre_distance;
-  return 8.0 * sffcal::kPi * r * r * r / 3.0 - sffcal::kPi * (4.0 * r + s) * (2.0 * r - s) * (2.0 * r - s) / 12.0;
-}
-
 double mechanical_coordination(ContactSpan contacts, int num_bodies) {
   std::vector<char> rattler(static_cast<std::size_t>(num_bodies), 0);
   std::vector<int> count(static_cast<std::size_t>(num_bodies), 0);

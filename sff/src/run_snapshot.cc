@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "sffcal/clump_geometry.h"
+
 namespace sff {
 namespace {
 
@@ -22,7 +24,7 @@ double solid_volume(const runfile::Snapshot& s) {
       distance = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                            (a[2] - b[2]) * (a[2] - b[2]));
     }
-    total += clump_volume(a[3], distance);
+    total += sffcal::two_sphere_union_volume(a[3], distance);
   }
   return total;
 }

@@ -1,4 +1,5 @@
 #include "dem/rigid_body.h"
+#include "sffcal/clump_geometry.h"
 #include "sffcal/constants.h"
 
 #include <gtest/gtest.h>
@@ -55,6 +56,20 @@ TEST(TwoSphereUnion, AgreesWithMonteCarloAtAnotherSpacing) {
   EXPECT_NEAR(p.inertia_transverse / (box * transverse / n), 1.0, 5e-3);
   // Summing the two spheres instead would overstate the volume: the lens is counted once.
   EXPECT_LT(p.volume, 2.0 * 4.0 / 3.0 * kPi);
+}
+
+// The one clump volume (common/): the slice integral the DEM's mass properties use equals the
+// closed form 8 pi r^3 / 3 - pi (4r + s)(2r - s)^2 / 12 the SFF analysis had, to round-off, from
+// one sphere (s = 0) to touching spheres (s -> 2r).
+TEST(TwoSphereUnion, VolumeIsTheClosedFormAndTheMassPropertiesOne) {
+  const double r = 0.3e-3;
+  for (const double s : {0.0, 0.1 * r, 0.5 * r, r, 1.5 * r, 1.999 * r}) {
+    const double closed =
+        8.0 * kPi * r * r * r / 3.0 - kPi * (4.0 * r + s) * (2.0 * r - s) * (2.0 * r - s) / 12.0;
+    EXPECT_NEAR(sffcal::two_sphere_union_volume(r, s), closed, 1e-14 * closed) << "s = " << s;
+    EXPECT_EQ(sffcal::two_sphere_union_volume(r, s), two_sphere_union_properties(r, s, 2650.0).volume);
+  }
+  EXPECT_NEAR(sffcal::two_sphere_union_volume(r, 0.0), 4.0 * kPi * r * r * r / 3.0, 1e-15 * r * r * r);
 }
 
 TEST(TwoSphereUnion, RejectsNonPhysicalInput) {

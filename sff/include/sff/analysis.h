@@ -112,10 +112,6 @@ SnapshotChecks check_snapshot(const SnapshotInput& input, const SnapshotAnalysis
 /// Z_m: iteratively drops bodies with fewer than two body-body contacts, then 2 N_c / N_p.
 double mechanical_coordination(ContactSpan contacts, int num_bodies);
 
-/// Solid volume of a two-sphere clump (equal spheres of radius r, centres s apart; s = 0 for a
-/// sphere): 8 pi r^3 / 3 - pi (4r + s)(2r - s)^2 / 12.
-double clump_volume(double radius, double centre_distance);
-
 /// The scalar columns of the per-snapshot table, and one row of it.
 const std::vector<std::string>& analysis_columns();
 std::vector<double> analysis_row(const SnapshotAnalysis& a);
