@@ -9,12 +9,14 @@
 #include "csv_table.h"
 #include "runfile/run_file.h"
 #include "sff/run_analysis.h"
+#include "sff/sff_equation.h"
 
 namespace sffcal {
 namespace {
 
-// Peak and last-snapshot values, and the worst errors, of one analysed run.
-void print_summary(const std::vector<sff::SnapshotAnalysis>& all, const std::vector<double>& strains) {
+// Peak and last-snapshot values, and the worst errors, of one analysed run (sheared at `friction`).
+void print_summary(const std::vector<sff::SnapshotAnalysis>& all, const std::vector<double>& strains,
+                   double friction) {
   std::size_t peak = 0;
   double worst_sff = 0.0, worst_eta = 0.0, worst_wall = 0.0;
   for (std::size_t k = 0; k < all.size(); ++k) {
@@ -25,11 +27,12 @@ void print_summary(const std::vector<sff::SnapshotAnalysis>& all, const std::vec
   }
   auto line = [&](const char* name, std::size_t k) {
     const sff::SnapshotAnalysis& a = all[k];
+    const sff::DecoupledTerms terms = sff::decoupled_terms(a.a_c, a.a_n, friction, a.m);
     std::printf("  %-8s eps_a %.3f  eta %.3f (walls %.3f)  a_c %.3f  a_n %.3f  m %.3f  eta_sff %.3f  "
                 "eta_decoupled %.3f = %.3f (fabric+force) + %.3f (mobilisation)\n"
                 "  %-8s Guo & Zhao: a_n %.3f  a_l %.3f  a_t %.3f  eta_gz %.3f\n",
                 name, strains[k], a.eta, a.wall_eta, a.a_c, a.a_n, a.m, a.eta_sff, a.eta_decoupled,
-                0.4 * (a.a_c + a.a_n), a.eta_decoupled - 0.4 * (a.a_c + a.a_n), "", a.a_n_gz,
+                terms.fabric + terms.normal_force, terms.mobilisation, "", a.a_n_gz,
                 a.a_l, a.a_t_gz, a.eta_gz);
   };
   std::printf("summary:\n");
@@ -80,7 +83,7 @@ int sff_command(const std::vector<std::string>& run_paths, const SffCommandOptio
     write_csv(stem + ".sff.csv", tables.sff_columns, tables.sff_rows);
     write_csv(stem + ".sff_checks.csv", tables.check_columns, tables.check_rows);
     write_csv(stem + ".sff_rose.csv", tables.rose_columns, tables.rose_rows);
-    if (!tables.analysed.empty()) print_summary(tables.analysed, tables.axial_strain);
+    if (!tables.analysed.empty()) print_summary(tables.analysed, tables.axial_strain, file.metadata().physics.friction);
     std::printf("tables: %s:/analysis/{sff,sff_checks,sff_rose} and %s.{sff,sff_checks,sff_rose}.csv "
                 "(%.2f s)\n",
                 path.c_str(), stem.c_str(), seconds);

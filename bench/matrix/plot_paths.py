@@ -23,7 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from sffcal import runfile  # noqa: E402
-from sffcal.sff_plots import draw_decomposition  # noqa: E402
+from sffcal.sff_plots import decomposition_terms, draw_decomposition  # noqa: E402
 
 
 def read(path):
@@ -76,11 +76,11 @@ def plot_decompositions(runs, png):
             print(f"| {run['name']} | — | | | | | | | liquefied before its first sheared snapshot |")
             continue
         peak = held[np.argmax(np.abs(sff["eta"][held]))]
+        fabric, force, mobilisation = decomposition_terms(sff, run["mu"])
         for label, k in (("peak", peak), ("last", held[-1])):
             print(f"| {run['name']} | {label} | {100 * sff['axial_strain'][k]:.1f} % | {sff['eta'][k]:.3f} | "
-                  f"{0.4 * sff['a_c'][k]:.3f} | {0.4 * sff['a_n'][k]:.3f} | "
-                  f"{0.6 * run['mu'] * sff['m'][k]:.3f} | {sff['eta_decoupled'][k]:.3f} | "
-                  f"{sff['eta_sff'][k]:.3f} |")
+                  f"{fabric[k]:.3f} | {force[k]:.3f} | {mobilisation[k]:.3f} | "
+                  f"{sff['eta_decoupled'][k]:.3f} | {sff['eta_sff'][k]:.3f} |")
     print()
 
 

@@ -38,7 +38,18 @@ Mobilisation mobilisation(ContactSpan contacts, const Eigen::Matrix3d& fabric_a,
 /// The same from moments already accumulated (internal use: one pass for all tensors).
 Mobilisation mobilisation(const internal::ForceMoments& moments, double lambda);
 
-/// Decoupled stress ratio: eta ~ (2/5)(a_c + a_n) + (3/5) mu m.
+/// The terms of the decoupled stress ratio (He et al. 2016, Eq. 27): eta ~ (2/5) a_c + (2/5) a_n
+/// + (3/5) mu m (python/sffcal/sff_plots.py's decomposition_terms is the same split).
+struct DecoupledTerms {
+  double fabric = 0.0;        ///< (2/5) a_c
+  double normal_force = 0.0;  ///< (2/5) a_n
+  double mobilisation = 0.0;  ///< (3/5) mu m
+};
+inline DecoupledTerms decoupled_terms(double a_c, double a_n, double friction, double m) {
+  return {0.4 * a_c, 0.4 * a_n, 0.6 * friction * m};
+}
+
+/// Decoupled stress ratio: eta ~ (2/5)(a_c + a_n) + (3/5) mu m, the sum of decoupled_terms.
 inline double decoupled_eta(double a_c, double a_n, double friction, double m) {
   return 0.4 * (a_c + a_n) + 0.6 * friction * m;
 }
