@@ -6,7 +6,6 @@ run yet leaves its section saying so.
 usage: pipeline_report.py OUT --scene SCENE.toml
 """
 import argparse
-import csv
 import datetime
 import glob
 import json
@@ -86,11 +85,6 @@ def run_row(path, role):
             f"{sigma3[0] / 1e3:.0f}", f"{e[0]:.3f}",
             f"{eta[k]:.3f} at {100 * eps_a[k]:.1f} %", f"{eta[last].mean():.3f}", f"{e[last].mean():.3f}",
             f"{100 * eps_v[-1]:.1f}", f"{100 * eps_a[-1]:.1f}", f"{inertial.max():.1e}", f"{eta.min():.2f}")
-
-
-def csv_rows(path):
-    with open(path, newline="") as f:
-        return list(csv.reader(line for line in f if not line.startswith("#")))
 
 
 def run_status(log):
@@ -192,7 +186,7 @@ def write_markdown(out, scene_path):
              f"including the one(s) held back from the fit ({', '.join(held) or 'none'}): a prediction.")
     fe = os.path.join(out, "fe_check", "summary.csv")
     if os.path.exists(fe):
-        rows = csv_rows(fe)
+        rows = runfile.read_csv_rows(fe)
         page.table(rows[0], [[f"**{c}**" if c == "fail" else c for c in row] for row in rows[1:]])
         status = run_status(os.path.join(out, "logs", "fe-check_check.log"))
         if status:

@@ -8,9 +8,7 @@ writes <test>_calibration.png (q/p, volumetric strain, void ratio and a_c agains
 DEM as points, model as lines) into PNG_FOLDER (default OUT_FOLDER).
 """
 import argparse
-import csv
 import glob
-import math
 import os
 
 import matplotlib
@@ -18,12 +16,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) if r[k] not in ("", "nan") else math.nan for r in rows]
-            for k in rows[0]} if rows else {}
+from sffcal.runfile import read_csv_table  # noqa: E402
 
 
 def main():
@@ -39,9 +32,9 @@ def main():
         raise SystemExit(f"no *_curves.csv in {args.folder}")
     for path in curves:
         name = os.path.basename(path)[: -len("_curves.csv")]
-        c = read_csv(path)
+        c = read_csv_table(path)
         fabric_path = os.path.join(args.folder, name + "_fabric.csv")
-        f = read_csv(fabric_path) if os.path.exists(fabric_path) else {}
+        f = read_csv_table(fabric_path) if os.path.exists(fabric_path) else {}
         fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), sharex=True)
         ea = [100 * x for x in c["axial_strain"]]
         panels = [

@@ -6,8 +6,6 @@ material-point driver and (where the case has one) the DEM run. Compression posi
     scripts/plot_fe_check.py OUT_FOLDER [-o PNG]      (default PNG: OUT_FOLDER/fe_check.png)
 """
 import argparse
-import csv
-import math
 import os
 import sys
 
@@ -15,6 +13,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from sffcal.runfile import read_csv_table  # noqa: E402
 
 # label, file, matplotlib style
 SOURCES = [
@@ -26,22 +26,10 @@ SOURCES = [
 
 
 def read_curve(path):
-    """Columns of a fe-check CSV as lists of floats (the status column is dropped)."""
+    """Columns of a fe-check CSV (sffcal.runfile.read_csv_table), None where it is absent."""
     if not os.path.exists(path):
         return None
-    with open(path, newline="") as f:
-        rows = [line for line in f if not line.startswith("#")]
-    reader = csv.DictReader(rows)
-    columns = {}
-    for row in reader:
-        for key, value in row.items():
-            if key == "status":
-                continue
-            try:
-                columns.setdefault(key, []).append(float(value))
-            except ValueError:
-                columns.setdefault(key, []).append(math.nan)
-    return columns or None
+    return read_csv_table(path) or None
 
 
 def main():

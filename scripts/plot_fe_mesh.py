@@ -12,17 +12,11 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+
+from sffcal.runfile import read_csv_table  # noqa: E402
 
 CASES = [("smooth", "smooth platens (homogeneous)", dict(color="C0", lw=2.4, alpha=0.7)),
          ("rough", "rough platens", dict(color="C3", lw=1.4))]
-
-
-def read(path):
-    """A CSV of fe_model (comment lines '#', one header line) as a numpy record array."""
-    with open(path, encoding="utf-8") as f:
-        lines = [line for line in f if not line.startswith("#")]
-    return np.genfromtxt(lines, delimiter=",", names=True, dtype=None, encoding="utf-8")
 
 
 def main():
@@ -36,7 +30,7 @@ def main():
         curve_path = os.path.join(args.folder, name + ".csv")
         if not os.path.exists(curve_path):
             continue
-        c = read(curve_path)
+        c = read_csv_table(curve_path)
         # q/p from the platen force, as a laboratory measures it: q = F/A - sigma_3 (the volume
         # average of sigma_zz is F/A), p = sigma_3 + q/3; sigma_3 = the initial radial stress.
         sigma_3 = c["radial_stress"][0]
@@ -47,7 +41,7 @@ def main():
             axes[0].plot(100 * c["axial_strain"], c["q"] / c["p"], color="C3", lw=1.0, ls=":",
                          label="rough, from volume averages")
         axes[1].plot(100 * c["axial_strain"], 100 * c["volumetric_strain"], label=label, **style)
-        b = read(os.path.join(args.folder, name + "_bulge.csv"))
+        b = read_csv_table(os.path.join(args.folder, name + "_bulge.csv"))
         axes[2].plot(1e3 * b["radial_displacement"], 1e3 * b["z"], marker="o", ms=3, label=label,
                      **style)
     axes[0].set(xlabel="axial strain [%]", ylabel="q/p (platen force)")

@@ -12,23 +12,17 @@ over the reference and base runs. A case is "within scatter" when every error is
 the scatter of its measure; its score is the largest error / scatter ratio.
 """
 import argparse
-import csv
 import math
 import os
 import re
 import sys
 
 from run_sweep import CASES, SEEDS, case_keys  # a sibling: this script's folder is on the path
+from sffcal.runfile import read_csv_table
 
 MAX_SEED = 20  # seeds looked for beyond SEEDS
 MEASURES = (("peak_eta", "peak η"), ("critical_eta", "critical η"), ("ev_10", "ε_v at 10 %"),
             ("ac_peak", "a_c at peak"))
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0]} if rows else {}
 
 
 def interpolate(x, xs, ys):
@@ -48,8 +42,8 @@ def measures(stem):
     if int(code) != 0:
         return {"seconds": float(seconds), "failed": True}
     summary = re.search(r"(\d+) steps in ([0-9.]+) s", open(stem + ".log").read())
-    series = read_csv(stem + ".h5.series.csv")
-    sff = read_csv(stem + ".h5.sff.csv")
+    series = read_csv_table(stem + ".h5.series.csv")
+    sff = read_csv_table(stem + ".h5.sff.csv")
     strain, eta = series["axial_strain"], series["eta"]
     peak = max(range(len(eta)), key=lambda i: eta[i])
     window = [e for s, e in zip(strain, eta) if 0.2 <= s <= 0.3]

@@ -13,7 +13,6 @@ prepared when missing; each run shears one on one thread with `sffcal triaxial` 
 same time step. A finished run is not redone. The table goes to stdout and OUT/table.md.
 """
 import argparse
-import csv
 import os
 import subprocess
 import sys
@@ -21,6 +20,7 @@ import time
 from multiprocessing import Pool
 
 from make_config import config_text
+from sffcal.runfile import read_csv_table
 
 AFTER_STRAIN = 0.005  # the target holds after the first 0.5 % of axial strain
 
@@ -49,15 +49,15 @@ def measures(out, name):
     path = os.path.join(out, "runs", name + ".h5.series.csv")
     if not os.path.exists(path):
         return None
-    rows = list(csv.DictReader(open(path)))
-    late = [r for r in rows if float(r["axial_strain"]) > AFTER_STRAIN]
-    errors = [float(r["lateral_stress_error"]) for r in late]
-    last = rows[-1]
-    steps, t = float(last["step"]) - float(rows[0]["step"]), float(last["time"]) - float(rows[0]["time"])
-    seconds = open(os.path.join(out, "runs", name + ".seconds")).read().split()[0]
+    series = read_csv_table(path)
+    errors = series["lateral_stress_error"][series["axial_strain"] > AFTER_STRAIN]
+    steps = series["step"][-1] - series["step"][0]
+    t = series["time"][-1] - series["time"][0]
+    with open(os.path.join(out, "runs", name + ".seconds")) as f:
+        seconds = f.read().split()[0]
     return {
-        "worst": max(errors), "mean": sum(errors) / len(errors),
-        "peak": max(float(r["eta"]) for r in rows), "steps": int(steps),
+        "worst": float(errors.max()), "mean": float(errors.mean()),
+        "peak": float(series["eta"].max()), "steps": int(steps),
         "dt": t / steps if steps else 0.0, "seconds": float(seconds),
     }
 

@@ -84,14 +84,30 @@ def table(f, name, columns=None):
     return {k: group[k][()] for k in (columns or group)}
 
 
-def read_csv_table(path):
-    """A CSV table written by the commands (lines starting with # are comments) as a dict of
-    float arrays, one per column."""
+def read_csv_rows(path):
+    """The rows of a CSV file written by the commands (lines starting with # are comments), the
+    header first, as lists of strings."""
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
-    if not rows:
+        return list(csv.reader(line for line in f if not line.startswith("#")))
+
+
+def _column(values):
+    """Floats (empty cells NaN), or the strings as they are where a cell is not a number."""
+    try:
+        return np.array([float(v) if v != "" else np.nan for v in values])
+    except ValueError:
+        return list(values)
+
+
+def read_csv_table(path):
+    """A CSV table written by the commands or the scripts (lines starting with # are comments) as
+    a dict of columns: float arrays (empty cells and "nan" NaN), or lists of strings for text
+    columns (e.g. a status)."""
+    rows = read_csv_rows(path)
+    if len(rows) < 2:
         return {}
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    header, body = rows[0], rows[1:]
+    return {name: _column([r[k] for r in body]) for k, name in enumerate(header)}
 
 
 def open_run(path):
