@@ -156,104 +156,153 @@ SnapshotChecks check_snapshot(const SnapshotInput& in, const SnapshotAnalysis& a
   return c;
 }
 
-const std::vector<std::string>& analysis_columns() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n = {
-        "p", "q", "eta", "wall_eta", "wall_stress_error", "wall_layer_ratio", "void_ratio", "coordination",
-        "mechanical_coordination", "lambda", "a_c", "a_n", "a_t", "m", "a_c_invariant",
-        "a_n_invariant", "a_t_invariant", "m_invariant", "eta_sff", "eta_concise", "eta_decoupled",
-        "eta_exact", "sff_error", "branch_ratio", "sliding_fraction"};
-    for (const char* t : {"stress", "fabric", "normal", "tangential", "mobilisation"})
-      for (const char* f : {"_major", "_axis_x", "_axis_y", "_axis_z", "_tilt_deg"})
-        n.push_back(std::string(t) + f);
-    // The general form (issue 18): each tensor whole, its invariants, its principal values and
-    // minor direction, its alignment with the stress and its triaxial scalar about the stress's
-    // major principal axis (tensor_general_row).
-    for (const char* t : {"stress", "fabric", "normal", "tangential", "mobilisation"})
-      for (const char* f : {"_xx", "_yy", "_zz", "_yz", "_xz", "_xy", "_magnitude", "_lode_deg",
-                            "_value_1", "_value_2", "_value_3", "_minor_axis_x", "_minor_axis_y",
-                            "_minor_axis_z", "_alignment", "_about_stress_axis"})
-        n.push_back(std::string(t) + f);
-    // The weights' fallback (sff-theory.md §8) and the Guo & Zhao convention (guo_zhao.h).
-    n.insert(n.end(), {"min_density", "binned_weights", "f_0", "l_0", "a_n_gz", "a_t_gz", "a_l",
-                       "a_n_gz_invariant", "a_t_gz_invariant", "a_l_invariant", "eta_gz"});
-    return n;
-  }();
-  return names;
-}
-
 namespace {
 
-// The general-form columns of one tensor T (analysis_columns): T's components, sqrt(3/2 T':T'),
-// its Lode angle, principal values, minor direction, alignment with the stress and the triaxial
-// scalar about the stress's major principal direction `stress_axis`.
-void append_general_form(std::vector<double>& row, const Eigen::Matrix3d& t,
-                         const Eigen::Matrix3d& stress, const Eigen::Vector3d& stress_axis) {
+// The general-form columns of one tensor T: T's components, sqrt(3/2 T':T'), its Lode angle,
+// principal values, minor direction, alignment with the stress and the triaxial scalar about the
+// stress's major principal direction `stress_axis`.
+template <typename Column>
+void general_form_columns(const std::string& name, const Eigen::Matrix3d& t,
+                          const Eigen::Matrix3d& stress, const Eigen::Vector3d& stress_axis,
+                          Column&& column) {
   const TensorInvariants inv = tensor_invariants(t);
   Eigen::Vector3d minor = inv.directions.col(2);
   if (minor.z() < 0.0) minor = -minor;
-  row.insert(row.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1), inv.magnitude,
-                         inv.lode_deg, inv.values[0], inv.values[1], inv.values[2], minor.x(),
-                         minor.y(), minor.z(), alignment(t, stress),
-                         triaxial_about(t, stress_axis)});
+  column(name + "_xx", t(0, 0));
+  column(name + "_yy", t(1, 1));
+  column(name + "_zz", t(2, 2));
+  column(name + "_yz", t(1, 2));
+  column(name + "_xz", t(0, 2));
+  column(name + "_xy", t(0, 1));
+  column(name + "_magnitude", inv.magnitude);
+  column(name + "_lode_deg", inv.lode_deg);
+  column(name + "_value_1", inv.values[0]);
+  column(name + "_value_2", inv.values[1]);
+  column(name + "_value_3", inv.values[2]);
+  column(name + "_minor_axis_x", minor.x());
+  column(name + "_minor_axis_y", minor.y());
+  column(name + "_minor_axis_z", minor.z());
+  column(name + "_alignment", alignment(t, stress));
+  column(name + "_about_stress_axis", triaxial_about(t, stress_axis));
+}
+
+// The columns of the per-snapshot SFF table, each declared once with its value: column(name,
+// value) in the table's order. analysis_columns() keeps the names (of a default analysis),
+// analysis_row() the values.
+template <typename Column>
+void analysis_table_columns(const SnapshotAnalysis& a, Column&& column) {
+  const std::pair<const char*, double> scalars[] = {
+      {"p", a.p}, {"q", a.q}, {"eta", a.eta}, {"wall_eta", a.wall_eta},
+      {"wall_stress_error", a.wall_stress_error}, {"wall_layer_ratio", a.wall_layer_ratio},
+      {"void_ratio", a.void_ratio}, {"coordination", a.coordination},
+      {"mechanical_coordination", a.mechanical_coordination}, {"lambda", a.lambda},
+      {"a_c", a.a_c}, {"a_n", a.a_n}, {"a_t", a.a_t}, {"m", a.m},
+      {"a_c_invariant", a.a_c_invariant}, {"a_n_invariant", a.a_n_invariant},
+      {"a_t_invariant", a.a_t_invariant}, {"m_invariant", a.m_invariant},
+      {"eta_sff", a.eta_sff}, {"eta_concise", a.eta_concise}, {"eta_decoupled", a.eta_decoupled},
+      {"eta_exact", a.eta_exact}, {"sff_error", a.sff_error}, {"branch_ratio", a.branch_ratio},
+      {"sliding_fraction", a.sliding_fraction}};
+  for (const auto& [name, value] : scalars) column(name, value);
+  const std::pair<const char*, const PrincipalAxis*> axes[] = {
+      {"stress", &a.stress_axis}, {"fabric", &a.fabric_axis}, {"normal", &a.normal_axis},
+      {"tangential", &a.tangential_axis}, {"mobilisation", &a.mobilisation_axis}};
+  for (const auto& [name, axis] : axes) {
+    const std::string t = name;
+    column(t + "_major", axis->major);
+    column(t + "_axis_x", axis->axis.x());
+    column(t + "_axis_y", axis->axis.y());
+    column(t + "_axis_z", axis->axis.z());
+    column(t + "_tilt_deg", axis->tilt_deg);
+  }
+  // The general form (issue 18): each tensor whole, its invariants, its principal values and
+  // minor direction, its alignment with the stress and its triaxial scalar about the stress's
+  // major principal axis.
+  const std::pair<const char*, const Eigen::Matrix3d*> tensors[] = {
+      {"stress", &a.stress}, {"fabric", &a.fabric}, {"normal", &a.normal},
+      {"tangential", &a.tangential}, {"mobilisation", &a.mobilisation}};
+  for (const auto& [name, tensor] : tensors)
+    general_form_columns(name, *tensor, a.stress, a.stress_axis.axis, column);
+  // The weights' fallback (sff-theory.md §8) and the Guo & Zhao convention (guo_zhao.h).
+  const GuoZhaoAnisotropy& g = a.guo_zhao;
+  const std::pair<const char*, double> tail[] = {
+      {"min_density", a.min_density}, {"binned_weights", a.binned_weights ? 1.0 : 0.0},
+      {"f_0", g.mean_normal_force}, {"l_0", g.mean_branch_length}, {"a_n_gz", a.a_n_gz},
+      {"a_t_gz", a.a_t_gz}, {"a_l", a.a_l}, {"a_n_gz_invariant", signed_invariant(g.normal)},
+      {"a_t_gz_invariant", signed_invariant(g.tangential)},
+      {"a_l_invariant", signed_invariant(g.branch)}, {"eta_gz", a.eta_gz}};
+  for (const auto& [name, value] : tail) column(name, value);
+}
+
+// The columns of the per-snapshot table of checks, declared once (as analysis_table_columns).
+template <typename Column>
+void check_table_columns(const SnapshotChecks& c, Column&& column) {
+  column("branch_mean_angle_deg", c.branch.mean_angle_deg);
+  column("branch_p95_angle_deg", c.branch.p95_angle_deg);
+  column("pearson_length_force", c.branch.pearson_length_force);
+  column("spearman_length_force", c.branch.spearman_length_force);
+  const std::pair<const char*, const TruncationFit*> fits[] = {
+      {"density", &c.truncation.density}, {"normal_force", &c.truncation.normal_force},
+      {"tangential_force", &c.truncation.tangential_force}};
+  for (const auto& [name, fit] : fits) {
+    const std::string q = name;
+    column(q + "_r2", fit->r_squared);
+    column(q + "_relative_l2", fit->relative_l2);
+    column(q + "_chi2_per_dof", fit->chi2_per_dof);
+    column(q + "_fourth_order_ratio", fit->fourth_order_ratio);
+  }
+  const std::pair<const char*, double> scalars[] = {
+      {"mobilisation_force_spearman", c.independence.mean_spearman},
+      {"mobilisation_force_max_abs_spearman", c.independence.max_abs_spearman},
+      {"mobilisation_coupling_error", c.independence.coupling_error},
+      {"mobilisation_leading_order_error", c.independence.leading_order_error},
+      {"coaxiality_fabric_deg", c.coaxiality.fabric_deg},
+      {"coaxiality_normal_deg", c.coaxiality.normal_deg},
+      {"coaxiality_tangential_deg", c.coaxiality.tangential_deg},
+      {"coaxiality_mobilisation_deg", c.coaxiality.mobilisation_deg},
+      {"strong_fraction", c.strong_weak.strong_fraction},
+      {"a_c_strong", c.strong_weak.a_c_strong}, {"a_c_weak", c.strong_weak.a_c_weak},
+      {"strong_q_share", c.strong_weak.strong_q_share},
+      {"weak_p_share", c.strong_weak.weak_p_share}};
+  for (const auto& [name, value] : scalars) column(name, value);
+  const std::pair<const char*, const Interval*> intervals[] = {
+      {"a_c", &c.bootstrap.a_c}, {"a_n", &c.bootstrap.a_n}, {"a_t", &c.bootstrap.a_t},
+      {"m", &c.bootstrap.m}};
+  for (const auto& [name, interval] : intervals) {
+    column(std::string(name) + "_low", interval->low);
+    column(std::string(name) + "_high", interval->high);
+  }
+}
+
+template <typename Visit>
+std::vector<std::string> names_of(Visit&& visit) {
+  std::vector<std::string> names;
+  visit([&](const std::string& name, double) { names.push_back(name); });
+  return names;
 }
 
 }  // namespace
 
+const std::vector<std::string>& analysis_columns() {
+  static const std::vector<std::string> names = names_of(
+      [](auto&& column) { analysis_table_columns(SnapshotAnalysis(), column); });
+  return names;
+}
+
 std::vector<double> analysis_row(const SnapshotAnalysis& a) {
-  std::vector<double> row = {
-      a.p, a.q, a.eta, a.wall_eta, a.wall_stress_error, a.wall_layer_ratio, a.void_ratio, a.coordination,
-      a.mechanical_coordination, a.lambda, a.a_c, a.a_n, a.a_t, a.m, a.a_c_invariant,
-      a.a_n_invariant, a.a_t_invariant, a.m_invariant, a.eta_sff, a.eta_concise, a.eta_decoupled,
-      a.eta_exact, a.sff_error, a.branch_ratio, a.sliding_fraction};
-  for (const PrincipalAxis* p :
-       {&a.stress_axis, &a.fabric_axis, &a.normal_axis, &a.tangential_axis, &a.mobilisation_axis})
-    row.insert(row.end(), {p->major, p->axis.x(), p->axis.y(), p->axis.z(), p->tilt_deg});
-  for (const Eigen::Matrix3d* t : {&a.stress, &a.fabric, &a.normal, &a.tangential, &a.mobilisation})
-    append_general_form(row, *t, a.stress, a.stress_axis.axis);
-  const GuoZhaoAnisotropy& g = a.guo_zhao;
-  row.insert(row.end(), {a.min_density, a.binned_weights ? 1.0 : 0.0, g.mean_normal_force,
-                         g.mean_branch_length, a.a_n_gz, a.a_t_gz, a.a_l, signed_invariant(g.normal),
-                         signed_invariant(g.tangential), signed_invariant(g.branch), a.eta_gz});
+  std::vector<double> row;
+  analysis_table_columns(a, [&](const std::string&, double value) { row.push_back(value); });
   return row;
 }
 
 const std::vector<std::string>& check_columns() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n = {
-        "branch_mean_angle_deg", "branch_p95_angle_deg", "pearson_length_force",
-        "spearman_length_force"};
-    for (const char* q : {"density", "normal_force", "tangential_force"})
-      for (const char* f : {"_r2", "_relative_l2", "_chi2_per_dof", "_fourth_order_ratio"})
-        n.push_back(std::string(q) + f);
-    n.insert(n.end(), {"mobilisation_force_spearman", "mobilisation_force_max_abs_spearman",
-                       "mobilisation_coupling_error", "mobilisation_leading_order_error",
-                       "coaxiality_fabric_deg", "coaxiality_normal_deg",
-                       "coaxiality_tangential_deg", "coaxiality_mobilisation_deg",
-                       "strong_fraction", "a_c_strong", "a_c_weak", "strong_q_share",
-                       "weak_p_share"});
-    for (const char* q : {"a_c", "a_n", "a_t", "m"})
-      for (const char* f : {"_low", "_high"}) n.push_back(std::string(q) + f);
-    return n;
-  }();
+  static const std::vector<std::string> names =
+      names_of([](auto&& column) { check_table_columns(SnapshotChecks(), column); });
   return names;
 }
 
 std::vector<double> check_row(const SnapshotChecks& c) {
-  std::vector<double> row = {c.branch.mean_angle_deg, c.branch.p95_angle_deg,
-                             c.branch.pearson_length_force, c.branch.spearman_length_force};
-  for (const TruncationFit* f :
-       {&c.truncation.density, &c.truncation.normal_force, &c.truncation.tangential_force})
-    row.insert(row.end(), {f->r_squared, f->relative_l2, f->chi2_per_dof, f->fourth_order_ratio});
-  row.insert(row.end(),
-             {c.independence.mean_spearman, c.independence.max_abs_spearman,
-              c.independence.coupling_error, c.independence.leading_order_error,
-              c.coaxiality.fabric_deg, c.coaxiality.normal_deg, c.coaxiality.tangential_deg,
-              c.coaxiality.mobilisation_deg, c.strong_weak.strong_fraction,
-              c.strong_weak.a_c_strong, c.strong_weak.a_c_weak, c.strong_weak.strong_q_share,
-              c.strong_weak.weak_p_share});
-  for (const Interval* i : {&c.bootstrap.a_c, &c.bootstrap.a_n, &c.bootstrap.a_t, &c.bootstrap.m})
-    row.insert(row.end(), {i->low, i->high});
+  std::vector<double> row;
+  check_table_columns(c, [&](const std::string&, double value) { row.push_back(value); });
   return row;
 }
 
