@@ -75,6 +75,7 @@ def run_row(path, role):
                                "inertial_number"])
         config = runfile.config_text(f)
         path_name = runfile.loading_path(f)
+        ended, summary = runfile.ended(f), runfile.summary(f)  # the DEM's own record of the test
     eps_a, eta, e = s["axial_strain"], s["eta"], s["void_ratio"]
     eps_v, sigma3, inertial = s["volumetric_strain"], s["sigma_3"], s["inertial_number"]
     bodies = re.search(r"^bodies\s*=\s*(\d+)", config, re.M)
@@ -84,7 +85,9 @@ def run_row(path, role):
     return (runfile.name_of(path), role, path_name, bodies.group(1) if bodies else "?",
             f"{sigma3[0] / 1e3:.0f}", f"{e[0]:.3f}",
             f"{eta[k]:.3f} at {100 * eps_a[k]:.1f} %", f"{eta[last].mean():.3f}", f"{e[last].mean():.3f}",
-            f"{100 * eps_v[-1]:.1f}", f"{100 * eps_a[-1]:.1f}", f"{inertial.max():.1e}", f"{eta.min():.2f}")
+            f"{100 * eps_v[-1]:.1f}", f"{100 * eps_a[-1]:.1f}", ended,
+            f"{100 * summary['worst_lateral_error']:.2f}" if "worst_lateral_error" in summary else "?",
+            f"{inertial.max():.1e}", f"{eta.min():.2f}")
 
 
 def run_status(log):
@@ -127,12 +130,14 @@ def write_markdown(out, scene_path):
              "strain rate) unless the path column says otherwise (docs/dem.md, \"Loading paths\": "
              "undrained at constant volume, extension with the platens parting, ε_a and q/p < 0). "
              "Peak (largest |q/p|) and end q/p from the walls; end values are means over the last 5 % of "
-             "|ε_a|; ε_v compression positive; I = the largest inertial number (quasi-static below 1e-3). "
+             "|ε_a|; ε_v compression positive; how the run ended and the worst lateral-stress error "
+             "|σ_lateral − σ3|/σ3 at the output rows are the DEM's own (/summary); I = the largest inertial "
+             "number (quasi-static below 1e-3). "
              "The calibration fits drained compression only.")
     if runs:
         rows = [run_row(r, role.get(os.path.basename(r)[:-3], "analysed only")) for r in runs]
         page.table(["specimen", "role", "path", "clumps", "σ3 [kPa]", "e0", "peak q/p", "end q/p", "end e",
-                    "end ε_v [%]", "end ε_a [%]", "max I", "min q/p"], rows)
+                    "end ε_v [%]", "end ε_a [%]", "ended", "servo error [%]", "max I", "min q/p"], rows)
         unstable = [row[0] for row in rows if float(row[-1]) < -0.05 and "extension" not in row[2]]
         if unstable:
             page.add(f"**Note:** q/p falls below zero early in the shearing of {', '.join(unstable)} "
