@@ -5,6 +5,21 @@
 #include "sff/statistics.h"
 
 namespace sff {
+namespace {
+
+// The columns of the rose table, one row per sector of a snapshot, each declared once with its
+// value (as the SFF and check tables' in analysis.cc).
+template <typename Column>
+void rose_table_columns(int snapshot, double axial_strain, const RoseSector& r, Column&& column) {
+  column("snapshot", static_cast<double>(snapshot));
+  column("axial_strain", axial_strain);
+  column("psi_low_deg", r.psi_low_deg);
+  column("psi_high_deg", r.psi_high_deg);
+  column("fraction", r.fraction);
+  column("normal_force", r.normal_force);
+}
+
+}  // namespace
 
 RunTables analyse_run(const runfile::RunFile& file, const CheckOptions& options,
                       const SnapshotReport& report) {
@@ -14,8 +29,8 @@ RunTables analyse_run(const runfile::RunFile& file, const CheckOptions& options,
   t.sff_columns = t.check_columns = key;
   t.sff_columns.insert(t.sff_columns.end(), analysis_columns().begin(), analysis_columns().end());
   t.check_columns.insert(t.check_columns.end(), check_columns().begin(), check_columns().end());
-  t.rose_columns = {"snapshot", "axial_strain", "psi_low_deg", "psi_high_deg", "fraction",
-                    "normal_force"};
+  rose_table_columns(0, 0.0, RoseSector(),
+                     [&](const char* name, double) { t.rose_columns.push_back(name); });
   const int num_snapshots = file.num_snapshots();
   for (int k = 0; k < num_snapshots; ++k) {
     const runfile::Snapshot s = file.read_snapshot(k);
@@ -37,9 +52,11 @@ RunTables analyse_run(const runfile::RunFile& file, const CheckOptions& options,
     for (double v : analysis_row(a)) t.sff_rows.back().push_back(v);
     t.check_rows.push_back(head);
     for (double v : check_row(checks)) t.check_rows.back().push_back(v);
-    for (const RoseSector& r : rose)
-      t.rose_rows.push_back({static_cast<double>(k), s.axial_strain, r.psi_low_deg,
-                             r.psi_high_deg, r.fraction, r.normal_force});
+    for (const RoseSector& r : rose) {
+      t.rose_rows.emplace_back();
+      rose_table_columns(k, s.axial_strain, r,
+                         [&](const char*, double value) { t.rose_rows.back().push_back(value); });
+    }
     t.analysed.push_back(a);
     t.axial_strain.push_back(s.axial_strain);
     if (report) report(s, &t.analysed.back(), "");

@@ -105,7 +105,7 @@ struct DistributedLinearAlgebra {
 
 /// The displacement at one vertex of the mesh.
 struct VertexDisplacement {
-  dealii::Point<3> position;      ///< [m], reference configuration
+  dealii::Point<3> position;          ///< [m], reference configuration
   dealii::Tensor<1, 3> displacement;  ///< [m]
 };
 
