@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -766,6 +767,12 @@ void BasicSolid<LinearAlgebra>::write_vtu(const std::string& filename) const {
   if constexpr (LinearAlgebra::kDistributed) {
     data_out.add_data_vector(process, "process", dealii::DataOut<3>::type_cell_data);
     data_out.build_patches();  // of the locally owned cells
+    // Every process sees the same folder, so all refuse together (MPI-IO's own error would not
+    // name the file).
+    const std::filesystem::path folder = std::filesystem::path(filename).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder))
+      throw std::runtime_error("cannot open " + filename + " for writing: no folder " +
+                               folder.string());
     data_out.write_vtu_in_parallel(filename, communicator_);
   } else {
     data_out.build_patches();

@@ -159,6 +159,16 @@ TEST(DistributedTriaxial, WritesOneVtuWithEveryCell) {
   MPI_Barrier(MPI_COMM_WORLD);
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::filesystem::remove_all(directory);
+  MPI_Barrier(MPI_COMM_WORLD);
+  // A folder that does not exist: every process refuses by name, none hangs.
+  options.vtu_prefix = directory + "/missing/mesh";
+  options.csv_path.clear();
+  try {
+    run_triaxial(material, options);
+    ADD_FAILURE() << "a VTU in a missing folder was not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
