@@ -287,41 +287,17 @@ SffRelationFit fit_sff_relation(const std::vector<TestData>& tests) {
   return f;
 }
 
-CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions& options) {
-  if (tests.empty()) throw std::runtime_error("calibrate: no tests");
-  for (const TestData& t : tests) validate_test_data(t);
-  if (options.starts < 1) throw std::runtime_error("calibrate: starts must be >= 1");
-  if (!(options.eta_scale > 0.0 && options.volumetric_scale > 0.0 && options.fabric_scale > 0.0))
-    throw std::runtime_error("calibrate: residual scales must be > 0");
-  CalibrationResult result;
-  FitVector x = options.initial;
-  FitVector lower = options.lower, upper = options.upper;
-  for (int i = 0; i < kNumFitParameters; ++i)
-    if (!(lower[i] <= x[i] && x[i] <= upper[i]))
-      throw std::runtime_error(std::string("calibrate: initial value of '") + kNames[i] +
-                               "' = " + std::to_string(x[i]) + " is outside its bounds [" +
-                               std::to_string(lower[i]) + ", " + std::to_string(upper[i]) + "]");
-  std::array<bool, kNumFitParameters> user_fixed{};
-  for (const std::string& name : options.fixed) user_fixed[fit_parameter_index(name)] = true;
-  for (int i = 0; i < kNumFitParameters; ++i) {
-    result.estimates[i].lower = lower[i];
-    result.estimates[i].upper = upper[i];
-  }
-  auto has = [&](Stage s) {
-    return std::find(options.stages.begin(), options.stages.end(), s) != options.stages.end();
-  };
-  auto set = [&](int i, double value, double error, const char* stage) {
-    x[i] = std::clamp(value, lower[i], upper[i]);
-    result.estimates[i].standard_error = error;
-    result.estimates[i].fixed = false;
-    result.estimates[i].stage = stage;
-  };
+namespace {
 
-  // Critical states: means over the last critical_window of axial strain.
+// The critical state of each test: means of p, e and q/p over the final critical_window of axial
+// strain (sffcal::final_window_start), and of a_c over the snapshots in the same window.
+std::vector<CriticalStatePoint> measure_critical_states(const std::vector<TestData>& tests,
+                                                        double window) {
+  std::vector<CriticalStatePoint> points;
   for (const TestData& t : tests) {
     CriticalStatePoint c;
     c.test = t.name;
-    const std::size_t from = sffcal::final_window_start(t.axial_strain, options.critical_window);
+    const std::size_t from = sffcal::final_window_start(t.axial_strain, window);
     std::vector<double> p, e, eta, a;
     for (std::size_t k = from; k < t.axial_strain.size(); ++k) {
       p.push_back(t.p[k]);
@@ -330,7 +306,7 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
     }
     // The snapshots within the same window (of the series' last strain).
     for (std::size_t k = sffcal::final_window_start(t.snapshot_axial_strain, t.axial_strain.back(),
-                                                    options.critical_window);
+                                                    window);
          k < t.a_c.size(); ++k)
       a.push_back(t.a_c[k]);
     if (a.empty()) a.push_back(t.a_c.back());
@@ -338,214 +314,305 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
     c.void_ratio = mean(e);
     c.eta = mean(eta);
     c.a_c = mean(a);
-    result.critical_states.push_back(c);
+    points.push_back(c);
+  }
+  return points;
+}
+
+// One calibration, stage by stage (docs/calibration.md): the fit vector, its bounds and the
+// result shared by the stages, each stage a member. calibrate() runs them in order.
+class Calibration {
+ public:
+  Calibration(const std::vector<TestData>& tests, const FitOptions& options);
+
+  void fit_critical_state_line();  // stage csl: M_c, e_Gamma, lambda_c, xi
+  void bound_c_h();                // c_h e_Gamma < 1
+  void estimate_elasticity();      // stage elastic: G0, nu from the first output interval
+  void prepare_paths();            // the strain grids; whether c_h is identifiable
+  void fit_fabric();               // stage fabric: a_cs measured, k_F fitted
+  void fit_plastic();              // stage plastic: h0, c_h, n_b, A0, n_d, e_A
+  void fit_jointly();              // stage joint: all but the critical state line
+  CalibrationResult finish();      // values, bounds, errors per test, the SFF relation
+
+  bool has(Stage s) const {
+    return std::find(options_.stages.begin(), options_.stages.end(), s) != options_.stages.end();
   }
 
-  // Stage csl: M_c and the critical state line.
-  if (has(Stage::kCsl)) {
-    std::vector<double> eta_cs;
-    for (const auto& c : result.critical_states) eta_cs.push_back(c.eta);
-    if (!user_fixed[kMc]) set(kMc, mean(eta_cs), standard_error_of_mean(eta_cs), "csl");
-    // Distinct pressures (more than 10 % apart).
-    std::vector<double> pressures;
-    for (const auto& c : result.critical_states) {
-      bool distinct = true;
-      for (double q : pressures) distinct = distinct && std::abs(c.p - q) > 0.1 * q;
-      if (distinct) pressures.push_back(c.p);
-    }
-    const int n = static_cast<int>(result.critical_states.size());
-    const int distinct = static_cast<int>(pressures.size());
-    auto line_fit = [&](double xi, double& e_gamma, double& lambda, double& rss,
-                        double* se_e, double* se_l) {
-      Eigen::MatrixXd X(n, 2);
-      Eigen::VectorXd y(n);
-      for (int k = 0; k < n; ++k) {
-        X(k, 0) = 1.0;
-        X(k, 1) = -std::pow(result.critical_states[k].p / kAtmosphericPressure, xi);
-        y(k) = result.critical_states[k].void_ratio;
-      }
-      const Eigen::Vector2d b = X.colPivHouseholderQr().solve(y);
-      e_gamma = b(0);
-      lambda = b(1);
-      rss = (y - X * b).squaredNorm();
-      if (se_e && n > 2) {
-        const Eigen::Matrix2d cov = rss / (n - 2) * (X.transpose() * X).inverse();
-        *se_e = std::sqrt(cov(0, 0));
-        *se_l = std::sqrt(cov(1, 1));
-      }
-    };
-    const int ig = kEGamma, il = kLambdaC, ix = kXi;
-    if (distinct == 1 || user_fixed[il]) {
-      // One pressure: only e_Gamma is identifiable; lambda_c and xi keep their values.
-      std::vector<double> eg;
-      for (const auto& c : result.critical_states)
-        eg.push_back(c.void_ratio + x[il] * std::pow(c.p / kAtmosphericPressure, x[ix]));
-      if (!user_fixed[ig]) set(ig, mean(eg), standard_error_of_mean(eg), "csl");
-      result.notes.push_back(
-          "critical state line: " + std::to_string(distinct) +
-          " distinct pressure(s): only e_gamma fitted; lambda_c = " + std::to_string(x[il]) +
-          " and xi = " + std::to_string(x[ix]) + " held at their initial values");
-    } else {
-      double best_xi = x[ix], best_rss = std::numeric_limits<double>::infinity();
-      if (distinct >= 3 && !user_fixed[ix]) {
-        for (double xi = lower[ix]; xi <= upper[ix] + 1e-12; xi += 0.005) {
-          double eg, l, rss;
-          line_fit(xi, eg, l, rss, nullptr, nullptr);
-          if (rss < best_rss && l >= 0.0) {
-            best_rss = rss;
-            best_xi = xi;
-          }
-        }
-      } else {
-        result.notes.push_back("critical state line: " + std::to_string(distinct) +
-                               " distinct pressures: xi = " + std::to_string(x[ix]) +
-                               " held at its initial value");
-      }
-      double eg, l, rss, se_e = -1.0, se_l = -1.0;
-      line_fit(best_xi, eg, l, rss, &se_e, &se_l);
-      if (!user_fixed[ig]) set(ig, eg, se_e, "csl");
-      set(il, l, se_l, "csl");
-      if (distinct >= 3 && !user_fixed[ix]) set(ix, best_xi, -1.0, "csl");
-    }
+ private:
+  void set(int i, double value, double error, const char* stage);
+  // The free ones of `wanted`: not fixed by the user, and c_h only where identifiable.
+  std::vector<int> free_of(std::initializer_list<int> wanted) const;
+  // One least-squares stage over every test's path, recorded in the result.
+  void run_stage(Stage stage, const ResidualSpec& spec, const std::vector<int>& free, int starts);
+  ResidualSpec base_spec() const;
+
+  const std::vector<TestData>& tests_;
+  const FitOptions& options_;
+  CalibrationResult result_;
+  FitVector x_, lower_, upper_;
+  std::array<bool, kNumFitParameters> user_fixed_{};
+  std::vector<Grid> grids_;
+  bool c_h_identifiable_ = true;
+  std::uint64_t stage_seed_ = 0;
+};
+
+Calibration::Calibration(const std::vector<TestData>& tests, const FitOptions& options)
+    : tests_(tests), options_(options), x_(options.initial), lower_(options.lower),
+      upper_(options.upper), stage_seed_(options.seed) {
+  if (tests.empty()) throw std::runtime_error("calibrate: no tests");
+  for (const TestData& t : tests) validate_test_data(t);
+  if (options.starts < 1) throw std::runtime_error("calibrate: starts must be >= 1");
+  if (!(options.eta_scale > 0.0 && options.volumetric_scale > 0.0 && options.fabric_scale > 0.0))
+    throw std::runtime_error("calibrate: residual scales must be > 0");
+  for (int i = 0; i < kNumFitParameters; ++i)
+    if (!(lower_[i] <= x_[i] && x_[i] <= upper_[i]))
+      throw std::runtime_error(std::string("calibrate: initial value of '") + kNames[i] +
+                               "' = " + std::to_string(x_[i]) + " is outside its bounds [" +
+                               std::to_string(lower_[i]) + ", " + std::to_string(upper_[i]) + "]");
+  for (const std::string& name : options.fixed) user_fixed_[fit_parameter_index(name)] = true;
+  for (int i = 0; i < kNumFitParameters; ++i) {
+    result_.estimates[i].lower = lower_[i];
+    result_.estimates[i].upper = upper_[i];
   }
+  result_.critical_states = measure_critical_states(tests, options.critical_window);
+}
+
+void Calibration::set(int i, double value, double error, const char* stage) {
+  x_[i] = std::clamp(value, lower_[i], upper_[i]);
+  result_.estimates[i].standard_error = error;
+  result_.estimates[i].fixed = false;
+  result_.estimates[i].stage = stage;
+}
+
+void Calibration::fit_critical_state_line() {
+  const std::vector<CriticalStatePoint>& points = result_.critical_states;
+  std::vector<double> eta_cs;
+  for (const auto& c : points) eta_cs.push_back(c.eta);
+  if (!user_fixed_[kMc]) set(kMc, mean(eta_cs), standard_error_of_mean(eta_cs), "csl");
+  // Distinct pressures (more than 10 % apart).
+  std::vector<double> pressures;
+  for (const auto& c : points) {
+    bool distinct = true;
+    for (double q : pressures) distinct = distinct && std::abs(c.p - q) > 0.1 * q;
+    if (distinct) pressures.push_back(c.p);
+  }
+  const int n = static_cast<int>(points.size());
+  const int distinct = static_cast<int>(pressures.size());
+  auto line_fit = [&](double xi, double& e_gamma, double& lambda, double& rss, double* se_e,
+                      double* se_l) {
+    Eigen::MatrixXd X(n, 2);
+    Eigen::VectorXd y(n);
+    for (int k = 0; k < n; ++k) {
+      X(k, 0) = 1.0;
+      X(k, 1) = -std::pow(points[k].p / kAtmosphericPressure, xi);
+      y(k) = points[k].void_ratio;
+    }
+    const Eigen::Vector2d b = X.colPivHouseholderQr().solve(y);
+    e_gamma = b(0);
+    lambda = b(1);
+    rss = (y - X * b).squaredNorm();
+    if (se_e && n > 2) {
+      const Eigen::Matrix2d cov = rss / (n - 2) * (X.transpose() * X).inverse();
+      *se_e = std::sqrt(cov(0, 0));
+      *se_l = std::sqrt(cov(1, 1));
+    }
+  };
+  const int ig = kEGamma, il = kLambdaC, ix = kXi;
+  if (distinct == 1 || user_fixed_[il]) {
+    // One pressure: only e_Gamma is identifiable; lambda_c and xi keep their values.
+    std::vector<double> eg;
+    for (const auto& c : points)
+      eg.push_back(c.void_ratio + x_[il] * std::pow(c.p / kAtmosphericPressure, x_[ix]));
+    if (!user_fixed_[ig]) set(ig, mean(eg), standard_error_of_mean(eg), "csl");
+    result_.notes.push_back(
+        "critical state line: " + std::to_string(distinct) +
+        " distinct pressure(s): only e_gamma fitted; lambda_c = " + std::to_string(x_[il]) +
+        " and xi = " + std::to_string(x_[ix]) + " held at their initial values");
+    return;
+  }
+  double best_xi = x_[ix], best_rss = std::numeric_limits<double>::infinity();
+  if (distinct >= 3 && !user_fixed_[ix]) {
+    for (double xi = lower_[ix]; xi <= upper_[ix] + 1e-12; xi += 0.005) {
+      double eg, l, rss;
+      line_fit(xi, eg, l, rss, nullptr, nullptr);
+      if (rss < best_rss && l >= 0.0) {
+        best_rss = rss;
+        best_xi = xi;
+      }
+    }
+  } else {
+    result_.notes.push_back("critical state line: " + std::to_string(distinct) +
+                            " distinct pressures: xi = " + std::to_string(x_[ix]) +
+                            " held at its initial value");
+  }
+  double eg, l, rss, se_e = -1.0, se_l = -1.0;
+  line_fit(best_xi, eg, l, rss, &se_e, &se_l);
+  if (!user_fixed_[ig]) set(ig, eg, se_e, "csl");
+  set(il, l, se_l, "csl");
+  if (distinct >= 3 && !user_fixed_[ix]) set(ix, best_xi, -1.0, "csl");
+}
+
+void Calibration::bound_c_h() {
   // c_h e_gamma < 1 (b0 > 0 over the void ratios the model can reach).
-  upper[kCh] = std::min(upper[kCh], 0.99 / x[kEGamma]);
-  x[kCh] = std::min(x[kCh], upper[kCh]);
-  result.estimates[kCh].upper = upper[kCh];
+  upper_[kCh] = std::min(upper_[kCh], 0.99 / x_[kEGamma]);
+  x_[kCh] = std::min(x_[kCh], upper_[kCh]);
+  result_.estimates[kCh].upper = upper_[kCh];
+}
 
-  // Stage elastic: secant over the first output interval of each test.
-  if (has(Stage::kElastic)) {
-    std::vector<double> g0, nu;
-    for (const TestData& t : tests) {
-      const std::size_t k = 1;
-      const double dea = t.axial_strain[k] - t.axial_strain[0];
-      const double dev = t.volumetric_strain[k] - t.volumetric_strain[0];
-      const double deq = dea - dev / 3.0;
-      const double dq = t.eta[k] * t.p[k] - t.eta[0] * t.p[0];
-      if (!(dea > 0.0 && deq > 0.0 && dq > 0.0)) continue;
-      const double G = dq / (3.0 * deq);
-      const double f = kAtmosphericPressure * std::pow(2.97 - t.e0, 2) / (1.0 + t.e0) *
-                       std::sqrt(t.p0 / kAtmosphericPressure);
-      g0.push_back(G / f);
-      nu.push_back(0.5 * (1.0 - dev / dea));  // drained elastic: de_v/de_a = 1 - 2 nu
-    }
-    if (!g0.empty()) {
-      if (!user_fixed[kG0]) set(kG0, mean(g0), standard_error_of_mean(g0), "elastic");
-      if (!user_fixed[kNu]) set(kNu, mean(nu), standard_error_of_mean(nu), "elastic");
-      result.notes.push_back(
-          "elasticity: secant over the first output interval (a lower bound of G0, the cone is "
-          "crossed almost at once); refined by the joint stage");
-    }
+void Calibration::estimate_elasticity() {
+  // Secant over the first output interval of each test.
+  std::vector<double> g0, nu;
+  for (const TestData& t : tests_) {
+    const std::size_t k = 1;
+    const double dea = t.axial_strain[k] - t.axial_strain[0];
+    const double dev = t.volumetric_strain[k] - t.volumetric_strain[0];
+    const double deq = dea - dev / 3.0;
+    const double dq = t.eta[k] * t.p[k] - t.eta[0] * t.p[0];
+    if (!(dea > 0.0 && deq > 0.0 && dq > 0.0)) continue;
+    const double G = dq / (3.0 * deq);
+    const double f = kAtmosphericPressure * std::pow(2.97 - t.e0, 2) / (1.0 + t.e0) *
+                     std::sqrt(t.p0 / kAtmosphericPressure);
+    g0.push_back(G / f);
+    nu.push_back(0.5 * (1.0 - dev / dea));  // drained elastic: de_v/de_a = 1 - 2 nu
   }
+  if (g0.empty()) return;
+  if (!user_fixed_[kG0]) set(kG0, mean(g0), standard_error_of_mean(g0), "elastic");
+  if (!user_fixed_[kNu]) set(kNu, mean(nu), standard_error_of_mean(nu), "elastic");
+  result_.notes.push_back(
+      "elasticity: secant over the first output interval (a lower bound of G0, the cone is "
+      "crossed almost at once); refined by the joint stage");
+}
 
-  std::vector<Grid> grids;
-  for (const TestData& t : tests) grids.push_back(make_grid(t, options.max_points));
+void Calibration::prepare_paths() {
+  for (const TestData& t : tests_) grids_.push_back(make_grid(t, options_.max_points));
   double e_min = 1e300, e_max = -1e300;
-  for (const TestData& t : tests) {
+  for (const TestData& t : tests_) {
     e_min = std::min(e_min, t.e0);
     e_max = std::max(e_max, t.e0);
   }
-  const bool c_h_identifiable = e_max - e_min >= 0.05;
-  if (!c_h_identifiable && !user_fixed[kCh])
-    result.notes.push_back("c_h held (initial void ratios span less than 0.05: it trades off "
-                           "with h0)");
+  c_h_identifiable_ = e_max - e_min >= 0.05;
+  if (!c_h_identifiable_ && !user_fixed_[kCh])
+    result_.notes.push_back("c_h held (initial void ratios span less than 0.05: it trades off "
+                            "with h0)");
+}
 
-  auto free_of = [&](std::initializer_list<int> wanted) {
-    std::vector<int> free;
-    for (int i : wanted)
-      if (!user_fixed[i] && (i != kCh || c_h_identifiable)) free.push_back(i);
-    return free;
-  };
-  std::uint64_t stage_seed = options.seed;
-  auto run = [&](Stage stage, const ResidualSpec& spec, const std::vector<int>& free, int starts) {
-    StageReport report;
-    report.stage = to_string(stage);
-    report.free_parameters = static_cast<int>(free.size());
-    if (free.empty()) {
-      report.message = "no free parameters";
-      result.stages.push_back(report);
-      return;
-    }
-    int residuals = 0;
-    for (std::size_t t = 0; t < tests.size(); ++t)
-      residuals += fit_detail::count_residuals(tests[t], grids[t], spec);
-    if (options.progress)
-      options.progress(std::string("stage ") + to_string(stage) + ": " +
-                       std::to_string(free.size()) + " free parameters, " +
-                       std::to_string(residuals) + " residuals, " + std::to_string(starts) +
-                       " start(s), " + std::to_string(options.threads) + " thread(s)");
-    const fit_detail::StageResult r =
-        fit_detail::solve_stage(tests, grids, spec, x, free, options, lower, upper, starts,
-                                stage_seed++ * 7919, to_string(stage));
-    report.timing = r.timing;
-    if (options.progress) {
-      char line[320];
-      std::snprintf(line, sizeof line,
-                    "stage %s done: cost %.6e -> %.6e, %d iterations, %d cost + %d Jacobian "
-                    "evaluations (%.1f s + %.1f s), %.0f substeps per step (at most %.0f), "
-                    "%.1f s (processor %.1f s)",
-                    to_string(stage), r.initial_cost, r.final_cost, r.timing.iterations,
-                    r.timing.cost_evaluations, r.timing.jacobian_evaluations,
-                    r.timing.cost_seconds, r.timing.jacobian_seconds,
-                    r.timing.substeps_per_step, r.timing.max_substeps_per_step, r.timing.seconds,
-                    r.timing.cpu_seconds);
-      options.progress(line);
-    }
-    report.residuals = r.residuals;
-    report.starts = r.starts_run;
-    report.initial_cost = r.initial_cost;
-    report.final_cost = r.final_cost;
-    report.message = r.message;
-    result.stages.push_back(report);
-    if (!std::isfinite(r.final_cost))
-      throw std::runtime_error(std::string("calibrate: stage '") + to_string(stage) +
-                               "' found no usable solution from any start: " + r.message);
-    for (std::size_t j = 0; j < free.size(); ++j)
-      set(free[j], r.x[free[j]], r.errors.empty() ? -1.0 : r.errors[j], to_string(stage));
-    if (!r.errors.empty()) result.covariance_scale = r.scale;
-    else
-      result.notes.push_back(std::string("stage ") + to_string(stage) +
-                             ": covariance not available (rank deficient or too few residuals)");
-  };
-  ResidualSpec base_spec;
-  base_spec.eta_scale = options.eta_scale;
-  base_spec.volumetric_scale = options.volumetric_scale;
-  base_spec.fabric_scale = options.fabric_scale;
+std::vector<int> Calibration::free_of(std::initializer_list<int> wanted) const {
+  std::vector<int> free;
+  for (int i : wanted)
+    if (!user_fixed_[i] && (i != kCh || c_h_identifiable_)) free.push_back(i);
+  return free;
+}
 
-  // Stage fabric: a_cs measured at the critical state, then k_F from the a_c histories.
-  if (has(Stage::kFabric)) {
-    std::vector<double> a_cs;
-    for (const auto& c : result.critical_states) a_cs.push_back(kSqrtTwoThirds * c.a_c);
-    if (!user_fixed[kAcsIndex] && mean(a_cs) > lower[kAcsIndex]) {
-      const double se = standard_error_of_mean(a_cs);
-      set(kAcsIndex, mean(a_cs), se, "fabric");
-    }
-    ResidualSpec spec = base_spec;
-    spec.eta = spec.volumetric = false;
-    run(Stage::kFabric, spec, free_of({kKF}), 1);
+ResidualSpec Calibration::base_spec() const {
+  ResidualSpec spec;
+  spec.eta_scale = options_.eta_scale;
+  spec.volumetric_scale = options_.volumetric_scale;
+  spec.fabric_scale = options_.fabric_scale;
+  return spec;
+}
+
+void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::vector<int>& free,
+                            int starts) {
+  StageReport report;
+  report.stage = to_string(stage);
+  report.free_parameters = static_cast<int>(free.size());
+  if (free.empty()) {
+    report.message = "no free parameters";
+    result_.stages.push_back(report);
+    return;
   }
-  if (has(Stage::kPlastic)) {
-    ResidualSpec spec = base_spec;
-    spec.fabric = false;
-    run(Stage::kPlastic, spec, free_of({kH0, kCh, kNb, kA0, kNd, kEA}), options.starts);
+  int residuals = 0;
+  for (std::size_t t = 0; t < tests_.size(); ++t)
+    residuals += fit_detail::count_residuals(tests_[t], grids_[t], spec);
+  if (options_.progress)
+    options_.progress(std::string("stage ") + to_string(stage) + ": " +
+                      std::to_string(free.size()) + " free parameters, " +
+                      std::to_string(residuals) + " residuals, " + std::to_string(starts) +
+                      " start(s), " + std::to_string(options_.threads) + " thread(s)");
+  const fit_detail::StageResult r =
+      fit_detail::solve_stage(tests_, grids_, spec, x_, free, options_, lower_, upper_, starts,
+                              stage_seed_++ * 7919, to_string(stage));
+  report.timing = r.timing;
+  if (options_.progress) {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "stage %s done: cost %.6e -> %.6e, %d iterations, %d cost + %d Jacobian "
+                  "evaluations (%.1f s + %.1f s), %.0f substeps per step (at most %.0f), "
+                  "%.1f s (processor %.1f s)",
+                  to_string(stage), r.initial_cost, r.final_cost, r.timing.iterations,
+                  r.timing.cost_evaluations, r.timing.jacobian_evaluations,
+                  r.timing.cost_seconds, r.timing.jacobian_seconds, r.timing.substeps_per_step,
+                  r.timing.max_substeps_per_step, r.timing.seconds, r.timing.cpu_seconds);
+    options_.progress(line);
   }
-  if (has(Stage::kJoint))
-    run(Stage::kJoint, base_spec,
-        free_of({kG0, kNu, kMc, kH0, kCh, kNb, kA0, kNd, kEA, kKF}), options.starts);
+  report.residuals = r.residuals;
+  report.starts = r.starts_run;
+  report.initial_cost = r.initial_cost;
+  report.final_cost = r.final_cost;
+  report.message = r.message;
+  result_.stages.push_back(report);
+  if (!std::isfinite(r.final_cost))
+    throw std::runtime_error(std::string("calibrate: stage '") + to_string(stage) +
+                             "' found no usable solution from any start: " + r.message);
+  for (std::size_t j = 0; j < free.size(); ++j)
+    set(free[j], r.x[free[j]], r.errors.empty() ? -1.0 : r.errors[j], to_string(stage));
+  if (!r.errors.empty())
+    result_.covariance_scale = r.scale;
+  else
+    result_.notes.push_back(std::string("stage ") + to_string(stage) +
+                            ": covariance not available (rank deficient or too few residuals)");
+}
 
-  result.values = x;
+void Calibration::fit_fabric() {
+  // a_cs measured at the critical state, then k_F from the a_c histories.
+  std::vector<double> a_cs;
+  for (const auto& c : result_.critical_states) a_cs.push_back(kSqrtTwoThirds * c.a_c);
+  if (!user_fixed_[kAcsIndex] && mean(a_cs) > lower_[kAcsIndex])
+    set(kAcsIndex, mean(a_cs), standard_error_of_mean(a_cs), "fabric");
+  ResidualSpec spec = base_spec();
+  spec.eta = spec.volumetric = false;
+  run_stage(Stage::kFabric, spec, free_of({kKF}), 1);
+}
+
+void Calibration::fit_plastic() {
+  ResidualSpec spec = base_spec();
+  spec.fabric = false;
+  run_stage(Stage::kPlastic, spec, free_of({kH0, kCh, kNb, kA0, kNd, kEA}), options_.starts);
+}
+
+void Calibration::fit_jointly() {
+  run_stage(Stage::kJoint, base_spec(),
+            free_of({kG0, kNu, kMc, kH0, kCh, kNb, kA0, kNd, kEA, kKF}), options_.starts);
+}
+
+CalibrationResult Calibration::finish() {
+  result_.values = x_;
   for (int i = 0; i < kNumFitParameters; ++i) {
-    ParameterEstimate& e = result.estimates[i];
-    e.value = x[i];
-    e.lower = lower[i];
-    e.upper = upper[i];
-    const double tol = 1e-4 * (upper[i] - lower[i]);
-    e.at_bound = !e.fixed && (x[i] - lower[i] <= tol || upper[i] - x[i] <= tol);
+    ParameterEstimate& e = result_.estimates[i];
+    e.value = x_[i];
+    e.lower = lower_[i];
+    e.upper = upper_[i];
+    const double tol = 1e-4 * (upper_[i] - lower_[i]);
+    e.at_bound = !e.fixed && (x_[i] - lower_[i] <= tol || upper_[i] - x_[i] <= tol);
   }
-  if (options.progress) options.progress("errors per test (report integration)");
-  for (const TestData& t : tests) result.errors.push_back(test_errors(t, x, options));
-  result.sff = fit_sff_relation(tests);
-  return result;
+  if (options_.progress) options_.progress("errors per test (report integration)");
+  for (const TestData& t : tests_) result_.errors.push_back(test_errors(t, x_, options_));
+  result_.sff = fit_sff_relation(tests_);
+  return std::move(result_);
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions& options) {
+  Calibration c(tests, options);
+  if (c.has(Stage::kCsl)) c.fit_critical_state_line();
+  c.bound_c_h();
+  if (c.has(Stage::kElastic)) c.estimate_elasticity();
+  c.prepare_paths();
+  if (c.has(Stage::kFabric)) c.fit_fabric();
+  if (c.has(Stage::kPlastic)) c.fit_plastic();
+  if (c.has(Stage::kJoint)) c.fit_jointly();
+  return c.finish();
 }
 
 }  // namespace calibration
