@@ -21,6 +21,7 @@ int calibrate_command(const std::vector<std::string>& run_paths,
   fit.starts = options.starts;
   fit.seed = options.seed;
   fit.max_points = options.max_points;
+  fit.fit_max_strain_step = options.max_strain_step;
   fit.verbose = options.verbose;
   fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const auto begin = std::chrono::steady_clock::now();

@@ -145,6 +145,11 @@ int main(int argc, char** argv) {
                         "series rows per test used in the fit")
       ->check(CLI::Range(3, 100000))
       ->capture_default_str();
+  calibrate->add_option("--max-strain-step", calibrate_options.max_strain_step,
+                        "largest axial-strain increment of the fit's path, splitting longer gaps "
+                        "between its rows (0: the rows only; the path error falls with its square)")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
   calibrate->add_flag("-v,--verbose", calibrate_options.verbose, "print the Ceres iterations");
   sffcal::add_calibrate_options(*calibrate, calibrate_options);
 #endif

@@ -181,8 +181,9 @@ bool scaled_standard_errors(ceres::Problem& problem, double* block, int size, do
   return true;
 }
 
-ModelCurves simulate_test(const TestData& t, const FitVector& x, const DriverOptions& driver) {
-  const Grid g = make_grid(t, std::numeric_limits<int>::max());
+ModelCurves simulate_test(const TestData& t, const FitVector& x, const DriverOptions& driver,
+                          double max_strain_step) {
+  const Grid g = make_grid(t, std::numeric_limits<int>::max(), max_strain_step);
   const PathResult<double> path = run_test(t, g, x, driver);
   ModelCurves c;
   c.status = path.status;
@@ -203,7 +204,7 @@ ModelCurves simulate_test(const TestData& t, const FitVector& x, const DriverOpt
 }
 
 TestErrors test_errors(const TestData& t, const FitVector& x, const FitOptions& options) {
-  const ModelCurves c = simulate_test(t, x, options.report_driver);
+  const ModelCurves c = simulate_test(t, x, options.report_driver, options.report_max_strain_step);
   TestErrors e;
   e.name = t.name;
   e.status = to_string(c.status);
@@ -484,7 +485,8 @@ void Calibration::estimate_elasticity() {
 }
 
 void Calibration::prepare_paths() {
-  for (const TestData& t : tests_) grids_.push_back(make_grid(t, options_.max_points));
+  for (const TestData& t : tests_)
+    grids_.push_back(make_grid(t, options_.max_points, options_.fit_max_strain_step));
   double e_min = 1e300, e_max = -1e300;
   for (const TestData& t : tests_) {
     e_min = std::min(e_min, t.e0);

@@ -173,6 +173,8 @@ std::string write_calibration_outputs(const std::string& folder,
                   {"starts", options.starts},
                   {"seed", options.seed},
                   {"max_points", options.max_points},
+                  {"fit_max_strain_step", options.fit_max_strain_step},
+                  {"report_max_strain_step", options.report_max_strain_step},
                   {"max_iterations", options.max_iterations},
                   {"function_tolerance", options.function_tolerance},
                   {"threads", options.threads},
@@ -200,7 +202,8 @@ std::string write_calibration_outputs(const std::string& folder,
   for (const TestData& t : held_out) curves.push_back(&t);
   for (const TestData* test : curves) {
     const TestData& t = *test;
-    const ModelCurves c = simulate_test(t, result.values, options.report_driver);
+    const ModelCurves c =
+        simulate_test(t, result.values, options.report_driver, options.report_max_strain_step);
     write_csv(fs::path(folder) / (t.name + "_curves.csv"),
               "axial_strain,dem_eta,model_eta,dem_volumetric_strain,model_volumetric_strain,"
               "dem_void_ratio,model_void_ratio",

@@ -2,11 +2,12 @@
 #include "fit_path.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace calibration {
 namespace fit_detail {
 
-Grid make_grid(const TestData& t, int max_points) {
+Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
   Grid g;
   const int n = static_cast<int>(t.axial_strain.size());
   const int wanted = std::max(3, std::min(max_points, n));
@@ -21,8 +22,15 @@ Grid make_grid(const TestData& t, int max_points) {
     if (s <= last) strains.push_back(s);
   std::sort(strains.begin(), strains.end());
   std::vector<double> grid;
-  for (double s : strains)
-    if (grid.empty() || s - grid.back() > 1e-7) grid.push_back(s);
+  for (double s : strains) {
+    if (!grid.empty() && !(s - grid.back() > 1e-7)) continue;
+    if (!grid.empty() && max_strain_step > 0.0) {
+      const double from = grid.back(), gap = s - from;
+      const int parts = static_cast<int>(std::ceil(gap / max_strain_step - 1e-9));
+      for (int k = 1; k < parts; ++k) grid.push_back(from + gap * k / parts);
+    }
+    grid.push_back(s);
+  }
   auto index_of = [&](double s) {
     const auto it = std::lower_bound(grid.begin(), grid.end(), s - 1e-7);
     return static_cast<int>(it - grid.begin());

@@ -17,14 +17,17 @@ namespace calibration {
 namespace fit_detail {
 
 
-/// Model strain grid of one test: 0, then the selected series rows and the snapshots.
+/// Model strain grid of one test: 0, then the selected series rows and the snapshots, with
+/// intermediate points where two are more than max_strain_step apart (0: no limit). The lateral
+/// stress is held only at the grid's points, so the path's error falls with the square of its
+/// step (docs/calibration.md, "Objective").
 struct Grid {
   std::vector<PathStep> steps;
   std::vector<int> rows;           ///< selected series rows
   std::vector<int> row_at;         ///< grid index of each selected row
   std::vector<int> snapshot_at;    ///< grid index of each snapshot (-1: beyond the series)
 };
-Grid make_grid(const TestData& t, int max_points);
+Grid make_grid(const TestData& t, int max_points, double max_strain_step = 0.0);
 
 struct ResidualSpec {
   bool eta = true, volumetric = true, fabric = true;
