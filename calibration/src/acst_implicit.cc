@@ -176,11 +176,11 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
                                       kDelta * (D * d_K + K * d_D_s)));
   jacobian.block<6, 6>(0, 6) = (inverse_scale * dlambda) * ((2.0 * G) * d_n_a + kDelta * (K * d_D_a));
   jacobian.block<6, 1>(0, kMultiplier) = inverse_scale * (flow + (dlambda * K * d_D_l) * kDelta);
-  const double c_h = -(2.0 / 3.0) * dlambda;
+  const double c_back = -(2.0 / 3.0) * dlambda;  // the alpha rows: I + c_back (...)
   jacobian.block<6, 6>(6, 0) =
-      c_h * (back * d_h_s + (h * k) * n * d_M_b_s) + (c_h * h * k * M_b) * d_n_s;
-  jacobian.block<6, 6>(6, 6) = c_h * (back * d_h_a + (h * k) * n * d_M_b_a) +
-                               (c_h * h * k * M_b) * d_n_a + (1.0 - c_h * h) * I;
+      c_back * (back * d_h_s + (h * k) * n * d_M_b_s) + (c_back * h * k * M_b) * d_n_s;
+  jacobian.block<6, 6>(6, 6) = c_back * (back * d_h_a + (h * k) * n * d_M_b_a) +
+                               (c_back * h * k * M_b) * d_n_a + (1.0 - c_back * h) * I;
   jacobian.block<6, 1>(6, kMultiplier) = -((2.0 / 3.0) * h) * back;
   jacobian.block<1, 6>(kMultiplier, 0) = d_rho_s;
   jacobian.block<1, 6>(kMultiplier, 6) = d_rho_a;

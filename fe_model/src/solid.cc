@@ -395,13 +395,16 @@ MaterialStatus BasicSolid<LinearAlgebra>::assemble(const Vector& u_owned, double
     if (with_matrix) tangent_matrix_.compress(dealii::VectorOperation::add);
     residual_.compress(dealii::VectorOperation::add);
     internal_force.compress(dealii::VectorOperation::add);
-    const std::vector<std::string> messages = dealii::Utilities::MPI::all_gather(
-        communicator_, failed && message ? *message : std::string());
+    // The messages are gathered only after a failure (every process knows of it by then).
+    const bool failed_here = failed;
     failed = dealii::Utilities::MPI::logical_or(failed, communicator_);
-    if (failed && message) {
-      *message = "";
-      for (unsigned int rank = 0; rank < messages.size() && message->empty(); ++rank)
-        if (!messages[rank].empty()) *message = "process " + std::to_string(rank) + ": " + messages[rank];
+    if (failed) {
+      const std::vector<std::string> messages = dealii::Utilities::MPI::all_gather(
+          communicator_, failed_here && message ? *message : std::string());
+      if (message) *message = "";
+      for (unsigned int rank = 0; message && rank < messages.size() && message->empty(); ++rank)
+        if (!messages[rank].empty())
+          *message = "process " + std::to_string(rank) + ": " + messages[rank];
     }
     unreliable_points = dealii::Utilities::MPI::sum(unreliable_points, communicator_);
     status = static_cast<MaterialStatus>(
