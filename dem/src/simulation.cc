@@ -99,6 +99,7 @@ Simulation::Simulation(SimulationState state, ContactParameters contact,
   servo_ = std::move(state.servo);
   const int slots = contacts_.num_slots();
   slots_.assign(slots, SlotResult{});
+  slot_touching_.assign(slots, 0);
   // The step of the restored list is the one the run was using (the same list, the same sum);
   // a state without a list gets the estimate of the list its first step will build.
   if (contacts_.num_builds() > 0 &&
@@ -281,6 +282,7 @@ void Simulation::rebuild_contacts() {
                   options_.min_parallel_items);
   const int slots = contacts_.num_slots();
   slots_.assign(slots, SlotResult{});
+  slot_touching_.assign(slots, 0);
   rebuild_due_ = false;
   set_time_step(contacts_, /*running=*/true);
 }
@@ -307,6 +309,7 @@ void Simulation::compute_pair_forces() {
         C.pair_touching[p] = 0;
         C.pair_tangential[p].setZero();
         slots_[p] = SlotResult{};
+        slot_touching_[p] = 0;
       }
       continue;
     }
@@ -346,6 +349,7 @@ void Simulation::compute_pair_forces() {
     }
     C.pair_normal[p] = n;
     C.pair_touching[p] = 1;
+    slot_touching_[p] = 1;
     slots_[p].force = fn * n + ft;
     slots_[p].moment = n.cross(ft);
     slots_[p].overlap = overlap;
@@ -410,6 +414,7 @@ void Simulation::compute_wall_forces() {
         C.wall_touching[k] = 0;
         C.wall_tangential[k].setZero();
         slots_[slot] = SlotResult{};
+        slot_touching_[slot] = 0;
       }
       continue;
     }
@@ -440,6 +445,7 @@ void Simulation::compute_wall_forces() {
       }
     }
     C.wall_touching[k] = 1;
+    slot_touching_[slot] = 1;
     slots_[slot].force = fn * n + ft;
     slots_[slot].moment = n.cross(ft);
     slots_[slot].overlap = overlap;
@@ -470,7 +476,7 @@ void Simulation::sum_body_forces() {
       Eigen::Vector3d f_s = Eigen::Vector3d::Zero();
       for (int e = C.incidence_offset[s]; e < C.incidence_offset[s + 1]; ++e) {
         const int code = C.incidence[e], slot = code >> 1;
-        if (slots_[slot].overlap == 0.0) continue;
+        if (!slot_touching_[slot]) continue;
         if (code & 1) f_s += slots_[slot].force;
         else f_s -= slots_[slot].force;
         if constexpr (kMoments) {

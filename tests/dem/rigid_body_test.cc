@@ -105,5 +105,23 @@ TEST(SymmetricTop, SmallStepsFollowTheAngularVelocity) {
   EXPECT_LT(got.angularDistance(expected), 1e-10);
 }
 
+TEST(SymmetricTop, SmallAngleSeriesAgreesWithTheLibmRotationToRoundOff) {
+  // rotate_symmetric_top takes sin and cos of half angles up to 1/32 from a Taylor series; the
+  // same rotation built with libm (Eigen's AngleAxis) must agree to a few ulps on both sides of
+  // that switch, at the tiny angles of a DEM step and at large ones.
+  const double ia = 0.3, it = 0.8;
+  const Eigen::Vector3d L(0.4, 0.1, -0.3);
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(1.1, Eigen::Vector3d(0, 1, 1).normalized()));
+  for (double dt : {1e-9, 1e-6, 1e-3, 0.05, 0.1, 0.12, 0.2, 0.5, 2.0}) {
+    const Eigen::Vector3d axis = body_axis(q);
+    const Eigen::Quaterniond precession(Eigen::AngleAxisd(dt * L.norm() / it, L.normalized()));
+    const Eigen::Quaterniond spin(Eigen::AngleAxisd(
+        dt * L.dot(axis) * (1.0 / ia - 1.0 / it), Eigen::Vector3d::UnitX()));
+    const Eigen::Quaterniond expected = (precession * q * spin).normalized();
+    const Eigen::Quaterniond got = rotate_symmetric_top(q, L, ia, it, dt);
+    EXPECT_LT((got.coeffs() - expected.coeffs()).cwiseAbs().maxCoeff(), 1e-15) << "dt " << dt;
+  }
+}
+
 }  // namespace
 }  // namespace dem

@@ -188,6 +188,10 @@ class Simulation {
     std::uint8_t sliding = 0;
   };
   std::vector<SlotResult> slots_;
+  /// 1 where the slot's contact touched at this step (its SlotResult holds a force): the per-body
+  /// sums test these bytes, 64 to a cache line, and fetch a SlotResult only for touching slots
+  /// (most candidates of a Verlet list do not touch).
+  std::vector<std::uint8_t> slot_touching_;
   std::vector<double> wall_force_, wall_stiffness_;
   std::vector<ServoState> servo_;
   PhaseTimings timings_;
