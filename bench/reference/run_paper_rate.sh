@@ -3,12 +3,17 @@
 # 100 kPa) and shears them at 20 /s to 25 % on 2 threads (bench/reference/dense_100kPa_20s.toml),
 # timed whole, then the SFF analysis and the plot. Figures: bench/RESULTS.md, "Paper size at the
 # paper's rate".
+#   bench/reference/run_paper_rate.sh [OUT] [SEED]     (defaults: out/reference_20s, seed 1)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 ./scripts/build.sh >/dev/null
 out=${1:-out/reference_20s}
+seed=${2:-1}
 mkdir -p "$out"
-/usr/bin/time -v ./build/sffcal dem --force -c bench/reference/dense_100kPa_20s.toml \
-  -o "$out/dense_100kPa_20s.h5" 2>&1 | tee "$out/dense_100kPa_20s.log"
-./build/sffcal sff "$out/dense_100kPa_20s.h5" -o "$out/sff"
-/usr/bin/python3 bench/reference/plot_triaxial.py "$out/dense_100kPa_20s.h5" "$out/dense_100kPa_20s.png"
+name=dense_100kPa_20s_seed$seed
+sed "s/^seed = 1 /seed = $seed /" bench/reference/dense_100kPa_20s.toml > "$out/$name.toml"
+grep -q "^seed = $seed " "$out/$name.toml"
+/usr/bin/time -v ./build/sffcal dem --force -c "$out/$name.toml" -o "$out/$name.h5" 2>&1 |
+  tee "$out/$name.log"
+./build/sffcal sff "$out/$name.h5" -o "$out/sff"
+/usr/bin/python3 bench/reference/plot_triaxial.py "$out/$name.h5" "$out/$name.png"
