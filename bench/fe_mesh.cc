@@ -6,7 +6,7 @@
 // end) and, with --vtu, <case>_NNNN.vtu + <case>.pvd for ParaView.
 //
 //   fe_mesh [--cells N] [--steps S] [--strain E] [--threads T] [--vtu] [--only smooth|rough]
-//           [--distributed] [--no-extrapolation] [-o OUT] [PARAMS.json]
+//           [--distributed] [--no-extrapolation] [-o OUT (default out/fe_mesh)] [PARAMS.json]
 //   (default: 10 cells per side, 100 steps to 0.3, all threads, examples/acst_toyoura.json;
 //    sigma_3 = 100 kPa, e_0 = 0.8, isotropic fabric)
 // --distributed: the mesh split over the MPI processes (DistributedSolid), e.g.
@@ -38,7 +38,7 @@ struct Case {
 
 int main(int argc, char** argv) {
   std::string parameters_path = std::string(SFFCAL_SOURCE_DIR) + "/examples/acst_toyoura.json";
-  std::string output = "fe_mesh";
+  std::string output = "out/fe_mesh";  // out/ is ignored by git
   std::string only;
   unsigned int cells = 10, steps = 100, threads = 0;
   double strain = 0.3;
