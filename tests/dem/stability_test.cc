@@ -7,9 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <random>
+#include <vector>
 
 #include "dem/compaction.h"
 #include "dem/critical_step.h"
@@ -60,31 +62,33 @@ struct EnergyScene {
   SimulationOptions options;
 };
 
+EnergyScene jammed_scene_with_velocities(std::uint64_t velocity_seed) {
+  const Simulation& sim = dense_specimen();
+  EnergyScene s{sim.state(), sim.contact_parameters(), sim.options()};
+  s.law.friction = 0.0;
+  s.law.wall_friction = 0.0;
+  s.options.local_damping = 0.0;
+  for (Wall& w : s.state.walls) {
+    w.mode = WallMode::kVelocity;
+    w.velocity = 0.0;
+  }
+  const double target = elastic_energy(sim);
+  std::mt19937_64 rng(velocity_seed);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  Particles& p = s.state.particles;
+  double kinetic = 0.0;
+  for (int b = 0; b < p.num_bodies(); ++b) {
+    p.velocity[b] = {gauss(rng), gauss(rng), gauss(rng)};
+    p.angular_momentum[b].setZero();
+    p.angular_velocity[b].setZero();
+    kinetic += 0.5 * p.mass[b] * p.velocity[b].squaredNorm();
+  }
+  for (auto& v : p.velocity) v *= std::sqrt(target / kinetic);
+  return s;
+}
+
 const EnergyScene& frictionless_jammed_scene() {
-  static const EnergyScene scene = [] {
-    const Simulation& sim = dense_specimen();
-    EnergyScene s{sim.state(), sim.contact_parameters(), sim.options()};
-    s.law.friction = 0.0;
-    s.law.wall_friction = 0.0;
-    s.options.local_damping = 0.0;
-    for (Wall& w : s.state.walls) {
-      w.mode = WallMode::kVelocity;
-      w.velocity = 0.0;
-    }
-    const double target = elastic_energy(sim);
-    std::mt19937_64 rng(5);
-    std::normal_distribution<double> gauss(0.0, 1.0);
-    Particles& p = s.state.particles;
-    double kinetic = 0.0;
-    for (int b = 0; b < p.num_bodies(); ++b) {
-      p.velocity[b] = {gauss(rng), gauss(rng), gauss(rng)};
-      p.angular_momentum[b].setZero();
-      p.angular_velocity[b].setZero();
-      kinetic += 0.5 * p.mass[b] * p.velocity[b].squaredNorm();
-    }
-    for (auto& v : p.velocity) v *= std::sqrt(target / kinetic);
-    return s;
-  }();
+  static const EnergyScene scene = jammed_scene_with_velocities(5);
   return scene;
 }
 
@@ -111,8 +115,8 @@ double largest(const std::vector<double>& v, std::size_t from, std::size_t to) {
                            v.begin() + static_cast<std::ptrdiff_t>(to));
 }
 
-Simulation energy_scene_at(double safety, double time_step = 0.0) {
-  const EnergyScene& scene = frictionless_jammed_scene();
+Simulation energy_scene_at(double safety, double time_step = 0.0,
+                           const EnergyScene& scene = frictionless_jammed_scene()) {
   SimulationOptions options = scene.options;
   options.time_step_safety = safety;
   options.time_step = time_step;
@@ -121,16 +125,29 @@ Simulation energy_scene_at(double safety, double time_step = 0.0) {
 
 TEST(TimeStepSweep, EnergyErrorIsSmallAndSecondOrderBelowTheCriticalStep) {
   // The same physical time, 500 critical steps (about 80 periods of the stiffest contact), at
-  // each safety factor.
+  // each safety factor. The grains rattle (as much kinetic as elastic energy), so a run is
+  // chaotic and its largest error one sample, and the compacted specimen is itself the end of a
+  // chaotic run: a one-bit change of the contact normals (another specimen) raised the errors by
+  // 30-60 % and the observed order 0.05 -> 0.1 fell to 1.68 with one velocity seed (issue 16).
+  // The error is the mean over three velocity seeds (orders 2.01-2.03 here, 1.93-2.09 with that
+  // change).
+  const std::vector<EnergyScene> scenes = {jammed_scene_with_velocities(5),
+                                           jammed_scene_with_velocities(6),
+                                           jammed_scene_with_velocities(7)};
   const double dt_c = energy_scene_at(1.0).critical_time_step();
   const std::vector<double> safety = {0.05, 0.1, 0.2, 0.5};
   std::vector<double> error;
   for (double s : safety) {
-    Simulation sim = energy_scene_at(s);
-    const std::vector<double> e = energy_errors(sim, 500.0 * dt_c, 50);
-    error.push_back(largest(e, 0, e.size()));
-    std::printf("safety %.2f: largest energy error %.2e over 500 dt_c\n", s, error.back());
-    EXPECT_LT(error.back(), 0.01) << "safety " << s;
+    double sum = 0.0;
+    for (const EnergyScene& scene : scenes) {
+      Simulation sim = energy_scene_at(s, 0.0, scene);
+      const std::vector<double> e = energy_errors(sim, 500.0 * dt_c, 50);
+      sum += largest(e, 0, e.size());
+      EXPECT_LT(largest(e, 0, e.size()), 0.01) << "safety " << s;
+    }
+    error.push_back(sum / static_cast<double>(scenes.size()));
+    std::printf("safety %.2f: largest energy error over 500 dt_c, mean of %zu runs %.2e\n", s,
+                scenes.size(), error.back());
   }
   // Leapfrog is second order: the error falls as dt^2 between successive safety factors.
   for (std::size_t k = 1; k < safety.size(); ++k) {
