@@ -1,14 +1,14 @@
 #!/usr/bin/python3
 """The paper-size runs at 20 /s against the recorded reference run (issue 16, point 4).
 
-usage: compare_paper_rate.py RUN.h5 [RUN.h5 ...] [--png OUT.png] [--csv-dir DIR]
+usage: compare_paper_rate.py RUN.h5 [RUN.h5 ...] [--png OUT.png]
 
 Prints a markdown table of the measures the issue compares (peak q/p and its strain, the mean q/p
 over 20-25 % as the critical one, the volumetric strain at 10 and 25 %) for the reference
 (bench/reference/dense_100kPa_series.csv, 50 /s) and each run, with the run's worst lateral
 stress error after 0.5 % of axial strain, its largest inertial number, steps and shearing wall
-time; overlays q/p and the volumetric strain in OUT.png; with --csv-dir writes each run's /series
-as NAME_series.csv (the reduced data kept in the repository).
+time; overlays q/p and the volumetric strain in OUT.png. (The reduced data kept in the repository
+are the series CSVs `sffcal` writes beside each run, RUN.h5.series.csv.)
 """
 import argparse
 import os
@@ -45,7 +45,6 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--png")
-    ap.add_argument("--csv-dir")
     a = ap.parse_args()
 
     curves = [("reference, 50 /s (dense_100kPa_series.csv)", runfile.read_csv_table(REFERENCE), {})]
@@ -54,11 +53,6 @@ def main():
             s = runfile.series(f)
             summary = runfile.summary(f) or {}
         curves.append((runfile.name_of(path), s, summary))
-        if a.csv_dir:
-            names = list(s.keys())
-            out = os.path.join(a.csv_dir, runfile.name_of(path) + "_series.csv")
-            np.savetxt(out, np.column_stack([s[n] for n in names]), delimiter=",",
-                       header=",".join(names), comments="", fmt="%.10g")
 
     print("| run | peak q/p | at ε_a | q/p 20–25 % | ε_v at 10 % | ε_v at 25 % | worst lateral error after 0.5 % | max I | steps | shearing wall s |")
     print("|---|---|---|---|---|---|---|---|---|---|")

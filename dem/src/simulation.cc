@@ -99,7 +99,6 @@ Simulation::Simulation(SimulationState state, ContactParameters contact,
   servo_ = std::move(state.servo);
   const int slots = contacts_.num_slots();
   slots_.assign(slots, SlotResult{});
-  slot_touching_.assign(slots, 0);
   // The step of the restored list is the one the run was using (the same list, the same sum);
   // a state without a list gets the estimate of the list its first step will build.
   if (contacts_.num_builds() > 0 &&
@@ -282,7 +281,6 @@ void Simulation::rebuild_contacts() {
                   options_.min_parallel_items);
   const int slots = contacts_.num_slots();
   slots_.assign(slots, SlotResult{});
-  slot_touching_.assign(slots, 0);
   rebuild_due_ = false;
   set_time_step(contacts_, /*running=*/true);
 }
@@ -309,7 +307,6 @@ void Simulation::compute_pair_forces() {
         C.pair_touching[p] = 0;
         C.pair_tangential[p].setZero();
         slots_[p] = SlotResult{};
-        slot_touching_[p] = 0;
       }
       continue;
     }
@@ -349,7 +346,6 @@ void Simulation::compute_pair_forces() {
     }
     C.pair_normal[p] = n;
     C.pair_touching[p] = 1;
-    slot_touching_[p] = 1;
     slots_[p].force = fn * n + ft;
     slots_[p].moment = n.cross(ft);
     slots_[p].overlap = overlap;
@@ -414,7 +410,6 @@ void Simulation::compute_wall_forces() {
         C.wall_touching[k] = 0;
         C.wall_tangential[k].setZero();
         slots_[slot] = SlotResult{};
-        slot_touching_[slot] = 0;
       }
       continue;
     }
@@ -445,7 +440,6 @@ void Simulation::compute_wall_forces() {
       }
     }
     C.wall_touching[k] = 1;
-    slot_touching_[slot] = 1;
     slots_[slot].force = fn * n + ft;
     slots_[slot].moment = n.cross(ft);
     slots_[slot].overlap = overlap;
@@ -467,7 +461,7 @@ template <bool kClumps, bool kMoments>
 void Simulation::sum_body_forces() {
   Particles& P = particles_;
   const ContactList& C = contacts_;
-  const int nb = P.num_bodies();
+  const int nb = P.num_bodies(), np = C.num_pairs();
 #pragma omp parallel for schedule(static) if (nb >= options_.min_parallel_items)
   for (int b = 0; b < nb; ++b) {
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
@@ -476,7 +470,9 @@ void Simulation::sum_body_forces() {
       Eigen::Vector3d f_s = Eigen::Vector3d::Zero();
       for (int e = C.incidence_offset[s]; e < C.incidence_offset[s + 1]; ++e) {
         const int code = C.incidence[e], slot = code >> 1;
-        if (!slot_touching_[slot]) continue;
+        // The list's touching bytes (64 to a cache line) decide before the 64-byte result is
+        // fetched: a candidate of the Verlet list that does not touch costs a byte.
+        if (!(slot < np ? C.pair_touching[slot] : C.wall_touching[slot - np])) continue;
         if (code & 1) f_s += slots_[slot].force;
         else f_s -= slots_[slot].force;
         if constexpr (kMoments) {

@@ -188,10 +188,6 @@ class Simulation {
     std::uint8_t sliding = 0;
   };
   std::vector<SlotResult> slots_;
-  /// 1 where the slot's contact touched at this step (its SlotResult holds a force): the per-body
-  /// sums test these bytes, 64 to a cache line, and fetch a SlotResult only for touching slots
-  /// (a candidate of the Verlet list that does not touch costs a byte, not a cache line).
-  std::vector<std::uint8_t> slot_touching_;
   std::vector<double> wall_force_, wall_stiffness_;
   std::vector<ServoState> servo_;
   PhaseTimings timings_;
