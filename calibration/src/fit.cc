@@ -36,7 +36,7 @@ constexpr int fit_index(std::string_view name) {
     if (std::string_view(kParameterFields<double>[k].name) == name) return static_cast<int>(k);
   return name == "a_cs" ? kAcsIndex : throw std::logic_error("no fit parameter of that name");
 }
-constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c"),
+constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c"), kC = fit_index("c"),
               kEGamma = fit_index("e_gamma"), kLambdaC = fit_index("lambda_c"),
               kXi = fit_index("xi"), kH0 = fit_index("h0"), kCh = fit_index("c_h"),
               kNb = fit_index("n_b"), kA0 = fit_index("A0"), kNd = fit_index("n_d"),
@@ -196,10 +196,17 @@ ModelCurves simulate_test(const TestData& t, const FitVector& x, const DriverOpt
     c.eta.push_back(ok ? path.rows[at].eta : nan);
     c.volumetric_strain.push_back(ok ? path.rows[at].volumetric_strain : nan);
     c.void_ratio.push_back(ok ? path.rows[at].void_ratio : nan);
+    c.p.push_back(ok ? path.rows[at].p : nan);
     if (ok) ++c.rows_reached;
   }
   for (int at : g.snapshot_at)
     c.a_c.push_back(at >= 0 && at < reached ? x[kAcsIndex] * path.rows[at].fabric_triaxial : nan);
+  // A held row (fit_path.h): unreliable, with the stress of the row before.
+  for (std::size_t k = 1; k < path.rows.size() && is_undrained(t.path); ++k)
+    if (path.rows[k].status == UpdateStatus::kUnreliable && path.rows[k].p == path.rows[k - 1].p) {
+      c.liquefied_at = path.rows[k - 1].axial_strain;
+      break;
+    }
   return c;
 }
 
@@ -207,38 +214,59 @@ TestErrors test_errors(const TestData& t, const FitVector& x, const FitOptions& 
   const ModelCurves c = simulate_test(t, x, options.report_driver, options.report_max_strain_step);
   TestErrors e;
   e.name = t.name;
+  e.path = to_string(t.path);
   e.status = to_string(c.status);
-  double se = 0, sv = 0, sr = 0, sa = 0, sn = 0;
-  int nn = 0;
+  const bool undrained = is_undrained(t.path);
+  double se = 0, sv = 0, sr = 0, sp = 0, sa = 0, sn = 0;
+  int nn = 0, eta_rows = 0, snapshots_used = 0;
   for (std::size_t i = 1; i < c.eta.size(); ++i) {
     if (!std::isfinite(c.eta[i])) continue;
-    const double de = c.eta[i] - t.eta[i], dv = c.volumetric_strain[i] - t.volumetric_strain[i];
+    const double dv = c.volumetric_strain[i] - t.volumetric_strain[i];
     const double dr = c.void_ratio[i] - t.void_ratio[i];
-    se += de * de;
+    const double dp = c.p[i] - t.p[i];
     sv += dv * dv;
     sr += dr * dr;
-    e.max_abs_eta = std::max(e.max_abs_eta, std::abs(de));
-    sn += std::pow(de / options.eta_scale, 2) + std::pow(dv / options.volumetric_scale, 2);
-    nn += 2;
+    sp += dp * dp / (t.p0 * t.p0);
+    // The objective's second residual (fit_path.h): the mean stress undrained, else eps_v.
+    const double second = undrained ? dp / (options.mean_stress_scale * std::max(t.p0, t.p[i]))
+                                    : dv / options.volumetric_scale;
+    sn += second * second;
+    ++nn;
     ++e.rows;
+    if (t.p[i] < kLiquefiedMeanStress * t.p0) continue;  // q/p of a liquefied specimen: noise
+    const double de = c.eta[i] - t.eta[i];
+    se += de * de;
+    e.max_abs_eta = std::max(e.max_abs_eta, std::abs(de));
+    sn += std::pow(de / options.eta_scale, 2);
+    ++nn;
+    ++eta_rows;
   }
+  const Grid g = make_grid(t, 3);  // for the snapshots' liquefaction flags only
   for (std::size_t i = 1; i < c.a_c.size(); ++i) {
-    if (!std::isfinite(c.a_c[i])) continue;
+    if (!std::isfinite(c.a_c[i]) || g.snapshot_liquefied[i]) continue;
     const double da = c.a_c[i] - t.a_c[i];
     sa += da * da;
     sn += std::pow(da / options.fabric_scale, 2);
     ++nn;
-    ++e.snapshots;
+    ++snapshots_used;
   }
+  e.snapshots = snapshots_used;
+  if (eta_rows > 0) e.rms_eta = std::sqrt(se / eta_rows);
   if (e.rows > 0) {
-    e.rms_eta = std::sqrt(se / e.rows);
     e.rms_volumetric = std::sqrt(sv / e.rows);
     e.rms_void_ratio = std::sqrt(sr / e.rows);
+    e.rms_p_ratio = std::sqrt(sp / e.rows);
   }
-  if (e.snapshots > 0) e.rms_a_c = std::sqrt(sa / e.snapshots);
+  if (snapshots_used > 0) e.rms_a_c = std::sqrt(sa / snapshots_used);
   if (nn > 0) e.rms_normalised = std::sqrt(sn / nn);
   if (e.rows + 1 < static_cast<int>(c.eta.size()))
     e.status += " (model failed after " + std::to_string(e.rows) + " rows)";
+  if (std::isfinite(c.liquefied_at)) {
+    char text[96];
+    std::snprintf(text, sizeof text, " (model liquefied at axial strain %.4f, held there)",
+                  c.liquefied_at);
+    e.status += text;
+  }
   return e;
 }
 
@@ -326,7 +354,7 @@ class Calibration {
  public:
   Calibration(const std::vector<TestData>& tests, const FitOptions& options);
 
-  void fit_critical_state_line();  // stage csl: M_c, e_Gamma, lambda_c, xi
+  void fit_critical_state_line();  // stage csl: M_c, c, e_Gamma, lambda_c, xi
   void bound_c_h();                // c_h e_Gamma < 1
   void estimate_elasticity();      // stage elastic: G0, nu from the first output interval
   void prepare_paths();            // the strain grids; whether c_h is identifiable
@@ -354,6 +382,9 @@ class Calibration {
   std::array<bool, kNumFitParameters> user_fixed_{};
   std::vector<Grid> grids_;
   bool c_h_identifiable_ = true;
+  bool c_identifiable_ = false;  // an extension test: c = M_e / M_c
+  // The tests whose end stands for the critical state (csl_tests()).
+  std::vector<std::size_t> csl_tests_;
   std::uint64_t stage_seed_ = 0;
 };
 
@@ -363,7 +394,8 @@ Calibration::Calibration(const std::vector<TestData>& tests, const FitOptions& o
   if (tests.empty()) throw std::runtime_error("calibrate: no tests");
   for (const TestData& t : tests) validate_test_data(t);
   if (options.starts < 1) throw std::runtime_error("calibrate: starts must be >= 1");
-  if (!(options.eta_scale > 0.0 && options.volumetric_scale > 0.0 && options.fabric_scale > 0.0))
+  if (!(options.eta_scale > 0.0 && options.volumetric_scale > 0.0 && options.fabric_scale > 0.0 &&
+        options.mean_stress_scale > 0.0))
     throw std::runtime_error("calibrate: residual scales must be > 0");
   for (int i = 0; i < kNumFitParameters; ++i)
     if (!(lower_[i] <= x_[i] && x_[i] <= upper_[i]))
@@ -376,6 +408,20 @@ Calibration::Calibration(const std::vector<TestData>& tests, const FitOptions& o
     result_.estimates[i].upper = upper_[i];
   }
   result_.critical_states = measure_critical_states(tests, options.critical_window);
+  // The critical state is read from the drained and constant-p tests that have not liquefied:
+  // the undrained runs stop at a few percent of strain with p' still moving (docs/calibration.md).
+  for (std::size_t k = 0; k < tests.size(); ++k) {
+    if (is_undrained(tests[k].path)) continue;
+    if (result_.critical_states[k].p < kLiquefiedMeanStress * tests[k].p0) continue;
+    csl_tests_.push_back(k);
+    if (axial_direction(tests[k].path) < 0.0) c_identifiable_ = true;
+  }
+  if (csl_tests_.size() < tests.size())
+    result_.notes.push_back("critical state: " + std::to_string(tests.size() - csl_tests_.size()) +
+                            " undrained or liquefied test(s) not used (their ends are not "
+                            "critical states)");
+  if (!c_identifiable_ && !user_fixed_[kC])
+    result_.notes.push_back("c held (no drained extension test: M_e is not measured)");
 }
 
 void Calibration::set(int i, double value, double error, const char* stage) {
@@ -386,10 +432,25 @@ void Calibration::set(int i, double value, double error, const char* stage) {
 }
 
 void Calibration::fit_critical_state_line() {
-  const std::vector<CriticalStatePoint>& points = result_.critical_states;
-  std::vector<double> eta_cs;
-  for (const auto& c : points) eta_cs.push_back(c.eta);
-  if (!user_fixed_[kMc]) set(kMc, mean(eta_cs), standard_error_of_mean(eta_cs), "csl");
+  if (csl_tests_.empty()) {
+    result_.notes.push_back("critical state line: no drained test reached its end without "
+                            "liquefying: M_c, c, e_gamma, lambda_c and xi keep their values");
+    return;
+  }
+  std::vector<CriticalStatePoint> points;
+  for (std::size_t k : csl_tests_) points.push_back(result_.critical_states[k]);
+  // M_c from compression, M_e = c M_c from extension (q/p < 0 there).
+  std::vector<double> eta_c, eta_e;
+  for (std::size_t k : csl_tests_)
+    (axial_direction(tests_[k].path) > 0.0 ? eta_c : eta_e).push_back(
+        std::abs(result_.critical_states[k].eta));
+  if (!user_fixed_[kMc] && !eta_c.empty())
+    set(kMc, mean(eta_c), standard_error_of_mean(eta_c), "csl");
+  if (!user_fixed_[kC] && !eta_e.empty()) {
+    const double m_c = eta_c.empty() ? x_[kMc] : mean(eta_c);
+    const double se_e = standard_error_of_mean(eta_e);
+    set(kC, mean(eta_e) / m_c, se_e >= 0.0 ? se_e / m_c : -1.0, "csl");
+  }
   // Distinct pressures (more than 10 % apart).
   std::vector<double> pressures;
   for (const auto& c : points) {
@@ -461,7 +522,8 @@ void Calibration::bound_c_h() {
 }
 
 void Calibration::estimate_elasticity() {
-  // Secant over the first output interval of each test.
+  // Secant over the first output interval of each test (signed: q and eps_q fall together in
+  // extension). nu only where sigma_3 is held: elastic de_v/de_a = 1 - 2 nu holds there alone.
   std::vector<double> g0, nu;
   for (const TestData& t : tests_) {
     const std::size_t k = 1;
@@ -469,16 +531,16 @@ void Calibration::estimate_elasticity() {
     const double dev = t.volumetric_strain[k] - t.volumetric_strain[0];
     const double deq = dea - dev / 3.0;
     const double dq = t.eta[k] * t.p[k] - t.eta[0] * t.p[0];
-    if (!(dea > 0.0 && deq > 0.0 && dq > 0.0)) continue;
+    if (!(dq / deq > 0.0)) continue;
     const double G = dq / (3.0 * deq);
     const double f = kAtmosphericPressure * std::pow(2.97 - t.e0, 2) / (1.0 + t.e0) *
                      std::sqrt(t.p0 / kAtmosphericPressure);
     g0.push_back(G / f);
-    nu.push_back(0.5 * (1.0 - dev / dea));  // drained elastic: de_v/de_a = 1 - 2 nu
+    if (holds_lateral_stress(t.path)) nu.push_back(0.5 * (1.0 - dev / dea));
   }
   if (g0.empty()) return;
   if (!user_fixed_[kG0]) set(kG0, mean(g0), standard_error_of_mean(g0), "elastic");
-  if (!user_fixed_[kNu]) set(kNu, mean(nu), standard_error_of_mean(nu), "elastic");
+  if (!user_fixed_[kNu] && !nu.empty()) set(kNu, mean(nu), standard_error_of_mean(nu), "elastic");
   result_.notes.push_back(
       "elasticity: secant over the first output interval (a lower bound of G0, the cone is "
       "crossed almost at once); refined by the joint stage");
@@ -501,7 +563,8 @@ void Calibration::prepare_paths() {
 std::vector<int> Calibration::free_of(std::initializer_list<int> wanted) const {
   std::vector<int> free;
   for (int i : wanted)
-    if (!user_fixed_[i] && (i != kCh || c_h_identifiable_)) free.push_back(i);
+    if (!user_fixed_[i] && (i != kCh || c_h_identifiable_) && (i != kC || c_identifiable_))
+      free.push_back(i);
   return free;
 }
 
@@ -510,6 +573,7 @@ ResidualSpec Calibration::base_spec() const {
   spec.eta_scale = options_.eta_scale;
   spec.volumetric_scale = options_.volumetric_scale;
   spec.fabric_scale = options_.fabric_scale;
+  spec.mean_stress_scale = options_.mean_stress_scale;
   return spec;
 }
 
@@ -526,6 +590,12 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
   int residuals = 0;
   for (std::size_t t = 0; t < tests_.size(); ++t)
     residuals += fit_detail::count_residuals(tests_[t], grids_[t], spec);
+  if (residuals == 0) {  // e.g. the fabric stage on liquefied undrained tests alone
+    report.message = "no residuals";
+    result_.stages.push_back(report);
+    result_.notes.push_back(std::string("stage ") + to_string(stage) + ": no residuals, skipped");
+    return;
+  }
   if (options_.progress)
     options_.progress(std::string("stage ") + to_string(stage) + ": " +
                       std::to_string(free.size()) + " free parameters, " +
@@ -566,9 +636,11 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
 }
 
 void Calibration::fit_fabric() {
-  // a_cs measured at the critical state, then k_F from the a_c histories.
+  // a_cs measured at the critical state (|a_c|: negative in extension, acst-model.md), then k_F
+  // from the a_c histories.
   std::vector<double> a_cs;
-  for (const auto& c : result_.critical_states) a_cs.push_back(kSqrtTwoThirds * c.a_c);
+  for (std::size_t k : csl_tests_)
+    a_cs.push_back(kSqrtTwoThirds * std::abs(result_.critical_states[k].a_c));
   if (!user_fixed_[kAcsIndex] && mean(a_cs) > lower_[kAcsIndex])
     set(kAcsIndex, mean(a_cs), standard_error_of_mean(a_cs), "fabric");
   ResidualSpec spec = base_spec();
@@ -584,7 +656,7 @@ void Calibration::fit_plastic() {
 
 void Calibration::fit_jointly() {
   run_stage(Stage::kJoint, base_spec(),
-            free_of({kG0, kNu, kMc, kH0, kCh, kNb, kA0, kNd, kEA, kKF}), options_.starts);
+            free_of({kG0, kNu, kMc, kC, kH0, kCh, kNb, kA0, kNd, kEA, kKF}), options_.starts);
 }
 
 CalibrationResult Calibration::finish() {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibration/fit.h"
@@ -83,14 +84,54 @@ void fill_from_tables(TestData& t, const std::map<std::string, std::vector<doubl
   set_initial_state(t);
 }
 
+constexpr std::pair<TestPath, const char*> kPathNames[] = {
+    {TestPath::kDrainedCompression, "drained_compression"},
+    {TestPath::kDrainedExtension, "drained_extension"},
+    {TestPath::kConstantPCompression, "constant_p_compression"},
+    {TestPath::kUndrainedCompression, "undrained_compression"},
+    {TestPath::kUndrainedExtension, "undrained_extension"},
+};
+
 }  // namespace
+
+TestPath parse_test_path(const std::string& name) {
+  for (const auto& [path, spelling] : kPathNames)
+    if (name == spelling) return path;
+  if (name == "true_triaxial")
+    throw std::runtime_error("loading path true_triaxial: the calibration follows axisymmetric "
+                             "paths only (x and y held alike), and true triaxial holds them apart");
+  std::string known;
+  for (const auto& entry : kPathNames) known += std::string(known.empty() ? "" : ", ") + entry.second;
+  throw std::runtime_error("unknown loading path '" + name + "' (the calibration reads " + known +
+                           ")");
+}
+
+const char* to_string(TestPath path) {
+  for (const auto& [p, spelling] : kPathNames)
+    if (p == path) return spelling;
+  return "unknown";
+}
+
+double axial_direction(TestPath path) {
+  return path == TestPath::kDrainedExtension || path == TestPath::kUndrainedExtension ? -1.0 : 1.0;
+}
+
+bool is_undrained(TestPath path) {
+  return path == TestPath::kUndrainedCompression || path == TestPath::kUndrainedExtension;
+}
+
+bool holds_lateral_stress(TestPath path) {
+  return path == TestPath::kDrainedCompression || path == TestPath::kDrainedExtension;
+}
 
 TestData read_run_file(const std::string& path) {
   const runfile::DemTest dem = runfile::read_dem_test(path);
-  if (dem.loading_path() != "drained_compression")
-    throw std::runtime_error("run file '" + path + "': loading path " + dem.loading_path() +
-                             ": the calibration fits drained compression only (the other paths "
-                             "are issue 19's)");
+  TestPath test_path;
+  try {
+    test_path = parse_test_path(dem.loading_path());
+  } catch (const std::exception& e) {
+    throw std::runtime_error("run file '" + path + "': " + e.what());
+  }
   if (!dem.analysed)
     throw std::runtime_error("run file '" + path +
                              "' has no SFF table /analysis/sff (run `sffcal sff " + path +
@@ -101,6 +142,7 @@ TestData read_run_file(const std::string& path) {
   t.seed = dem.metadata.seed;
   t.program_version = dem.metadata.program_version;
   t.friction = dem.metadata.physics.friction;  // the friction of shearing, as the DEM used it
+  t.path = test_path;
   t.axial_strain = dem.series.axial_strain;
   t.eta = dem.series.eta;
   t.volumetric_strain = dem.series.volumetric_strain;
@@ -117,11 +159,12 @@ TestData read_run_file(const std::string& path) {
 }
 
 TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv,
-                       const std::string& name, double friction) {
+                       const std::string& name, double friction, TestPath path) {
   TestData t;
   t.name = name;
   t.source = series_csv + " + " + sff_csv;
   t.friction = friction;
+  t.path = path;
   fill_from_tables(t, read_csv(series_csv), series_csv, read_csv(sff_csv), sff_csv);
   validate_test_data(t);
   return t;
@@ -144,11 +187,13 @@ void validate_test_data(const TestData& t) {
       if (!std::isfinite((*values)[k]))
         fail(std::string("series '") + name + "' row " + std::to_string(k) + " is not finite");
   }
+  const double direction = axial_direction(t.path);
   for (std::size_t k = 1; k < n; ++k)
-    if (!(t.axial_strain[k] > t.axial_strain[k - 1]))
-      fail("axial_strain does not increase at row " + std::to_string(k));
+    if (!(direction * (t.axial_strain[k] - t.axial_strain[k - 1]) > 0.0))
+      fail(std::string("axial_strain does not ") + (direction > 0 ? "increase" : "decrease") +
+           " at row " + std::to_string(k) + " (path " + to_string(t.path) + ")");
   const std::size_t m = t.snapshot_axial_strain.size();
-  if (m < 2) fail("fewer than 2 snapshots in the SFF table (" + std::to_string(m) + ")");
+  if (m < 1) fail("no snapshot in the SFF table (the initial fabric comes from the first)");
   const std::pair<const char*, const std::vector<double>*> snaps[] = {
       {"a_c", &t.a_c}, {"a_n", &t.a_n}, {"m", &t.mobilisation}, {"eta", &t.snapshot_eta},
       {"axial_strain", &t.snapshot_axial_strain}};

@@ -47,20 +47,23 @@ void write_csv(const std::filesystem::path& path, const std::string& header,
 }
 
 void errors_table(std::ostringstream& s, const std::vector<TestErrors>& errors) {
-  s << "| test | rows | snapshots | RMS q/p | max abs q/p | RMS eps_v | RMS e | RMS a_c | "
-       "RMS normalised | model status |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  s << "| test | path | rows | snapshots | RMS q/p | max abs q/p | RMS eps_v | RMS e | "
+       "RMS p/p0 | RMS a_c | RMS normalised | model status |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const TestErrors& e : errors)
-    s << "| " << e.name << " | " << e.rows << " | " << e.snapshots << " | " << number(e.rms_eta)
-      << " | " << number(e.max_abs_eta) << " | " << number(e.rms_volumetric) << " | "
-      << number(e.rms_void_ratio) << " | " << number(e.rms_a_c) << " | "
+    s << "| " << e.name << " | " << e.path << " | " << e.rows << " | " << e.snapshots << " | "
+      << number(e.rms_eta) << " | " << number(e.max_abs_eta) << " | "
+      << number(e.rms_volumetric) << " | " << number(e.rms_void_ratio) << " | "
+      << number(e.rms_p_ratio) << " | " << number(e.rms_a_c) << " | "
       << number(e.rms_normalised) << " | " << e.status << " |\n";
 }
 
 Json errors_json(const std::vector<TestErrors>& errors) {
   Json list = Json::array();
   for (const TestErrors& e : errors)
-    list.push_back({{"test", e.name}, {"rms_eta", e.rms_eta}, {"max_abs_eta", e.max_abs_eta},
-                    {"rms_volumetric", e.rms_volumetric}, {"rms_void_ratio", e.rms_void_ratio},
+    list.push_back({{"test", e.name}, {"path", e.path}, {"rms_eta", e.rms_eta},
+                    {"max_abs_eta", e.max_abs_eta}, {"rms_volumetric", e.rms_volumetric},
+                    {"rms_void_ratio", e.rms_void_ratio}, {"rms_p_ratio", e.rms_p_ratio},
                     {"rms_a_c", e.rms_a_c}, {"status", e.status}});
   return list;
 }
@@ -143,7 +146,8 @@ std::string write_calibration_outputs(const std::string& folder,
     for (const TestData& t : list)
       inputs.push_back({{"name", t.name}, {"source", t.source}, {"seed", t.seed},
                         {"program_version", t.program_version}, {"p0_Pa", t.p0}, {"e0", t.e0},
-                        {"a_c0", t.a_c0}, {"friction", t.friction}, {"fitted", fitted}});
+                        {"a_c0", t.a_c0}, {"friction", t.friction},
+                        {"loading_path", to_string(t.path)}, {"fitted", fitted}});
   };
   add_inputs(tests, true);
   add_inputs(held_out, false);
@@ -183,7 +187,8 @@ std::string write_calibration_outputs(const std::string& folder,
                   {"residual_scales",
                    {{"eta", options.eta_scale},
                     {"volumetric_strain", options.volumetric_scale},
-                    {"a_c", options.fabric_scale}}},
+                    {"a_c", options.fabric_scale},
+                    {"mean_stress_relative", options.mean_stress_scale}}},
                   {"covariance_scale_s2", result.covariance_scale},
                   {"notes", result.notes}};
   if (result.sff.available)
@@ -206,9 +211,9 @@ std::string write_calibration_outputs(const std::string& folder,
         simulate_test(t, result.values, options.report_driver, options.report_max_strain_step);
     write_csv(fs::path(folder) / (t.name + "_curves.csv"),
               "axial_strain,dem_eta,model_eta,dem_volumetric_strain,model_volumetric_strain,"
-              "dem_void_ratio,model_void_ratio",
+              "dem_void_ratio,model_void_ratio,dem_p_Pa,model_p_Pa",
               {c.axial_strain, t.eta, c.eta, t.volumetric_strain, c.volumetric_strain,
-               t.void_ratio, c.void_ratio});
+               t.void_ratio, c.void_ratio, t.p, c.p});
     write_csv(fs::path(folder) / (t.name + "_fabric.csv"), "axial_strain,dem_a_c,model_a_c",
               {t.snapshot_axial_strain, t.a_c, c.a_c});
   }

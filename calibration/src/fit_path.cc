@@ -7,8 +7,16 @@
 namespace calibration {
 namespace fit_detail {
 
+Lateral lateral_of(TestPath path) {
+  if (is_undrained(path)) return Lateral::kVolume;
+  return path == TestPath::kConstantPCompression ? Lateral::kMeanStress : Lateral::kStress;
+}
+
 Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
   Grid g;
+  // The grid counts |eps_a| (the strain along the path's direction); the steps carry the sign.
+  const double direction = axial_direction(t.path);
+  auto along = [&](double axial) { return direction * axial; };
   const int n = static_cast<int>(t.axial_strain.size());
   const int wanted = std::max(3, std::min(max_points, n));
   for (int k = 0; k < wanted; ++k) {
@@ -16,10 +24,10 @@ Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
     if (g.rows.empty() || row != g.rows.back()) g.rows.push_back(row);
   }
   std::vector<double> strains = {0.0};
-  for (int row : g.rows) strains.push_back(t.axial_strain[row]);
-  const double last = t.axial_strain.back();
+  for (int row : g.rows) strains.push_back(along(t.axial_strain[row]));
+  const double last = along(t.axial_strain.back());
   for (double s : t.snapshot_axial_strain)
-    if (s <= last) strains.push_back(s);
+    if (along(s) <= last) strains.push_back(along(s));
   std::sort(strains.begin(), strains.end());
   std::vector<double> grid;
   for (double s : strains) {
@@ -35,16 +43,34 @@ Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
     const auto it = std::lower_bound(grid.begin(), grid.end(), s - 1e-7);
     return static_cast<int>(it - grid.begin());
   };
-  for (int row : g.rows) g.row_at.push_back(std::min(index_of(t.axial_strain[row]),
-                                                     static_cast<int>(grid.size()) - 1));
-  for (double s : t.snapshot_axial_strain)
-    g.snapshot_at.push_back(s <= last + 1e-7 ? std::min(index_of(s), static_cast<int>(grid.size()) - 1)
-                                             : -1);
+  const int end = static_cast<int>(grid.size()) - 1;
+  auto liquefied = [&](int row) { return t.p[row] < kLiquefiedMeanStress * t.p0 ? 1 : 0; };
+  for (int row : g.rows) {
+    g.row_at.push_back(std::min(index_of(along(t.axial_strain[row])), end));
+    g.row_liquefied.push_back(static_cast<char>(liquefied(row)));
+  }
+  for (double s : t.snapshot_axial_strain) {
+    g.snapshot_at.push_back(along(s) <= last + 1e-7 ? std::min(index_of(along(s)), end) : -1);
+    // The series row nearest in strain.
+    int nearest = 0;
+    for (int row = 1; row < n; ++row)
+      if (std::abs(t.axial_strain[row] - s) < std::abs(t.axial_strain[nearest] - s)) nearest = row;
+    g.snapshot_liquefied.push_back(static_cast<char>(liquefied(nearest)));
+  }
   for (std::size_t k = 1; k < grid.size(); ++k) {
     PathStep step;
-    step.control = {Control::kStress, Control::kStress, Control::kStrain,
-                    Control::kStrain, Control::kStrain, Control::kStrain};
-    step.value = {t.p0, t.p0, grid[k] - grid[k - 1], 0.0, 0.0, 0.0};
+    if (is_undrained(t.path)) {
+      const double d = direction * (grid[k] - grid[k - 1]);
+      step.control = {Control::kStrain, Control::kStrain, Control::kStrain,
+                      Control::kStrain, Control::kStrain, Control::kStrain};
+      step.value = {-0.5 * d, -0.5 * d, d, 0.0, 0.0, 0.0};
+    } else {
+      // The lateral stress sigma_3 = p0 (for constant p the driver holds the mean stress, which
+      // the general driver's per-component controls cannot say: axisymmetric_path reads value[0]).
+      step.control = {Control::kStress, Control::kStress, Control::kStrain,
+                      Control::kStrain, Control::kStrain, Control::kStrain};
+      step.value = {t.p0, t.p0, direction * (grid[k] - grid[k - 1]), 0.0, 0.0, 0.0};
+    }
     g.steps.push_back(step);
   }
   return g;
@@ -53,10 +79,12 @@ Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
 int count_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec) {
   int n = 0;
   const int rows = static_cast<int>(g.rows.size()) - 1;  // the first row is the initial state
-  if (spec.eta) n += rows;
+  if (spec.eta)
+    for (int i = 1; i <= rows; ++i) n += g.row_liquefied[i] ? 0 : 1;
   if (spec.volumetric) n += rows;
   if (spec.fabric)
-    for (std::size_t k = 1; k < t.a_c.size(); ++k) n += g.snapshot_at[k] >= 0 ? 1 : 0;
+    for (std::size_t k = 1; k < t.a_c.size(); ++k)
+      n += g.snapshot_at[k] >= 0 && !g.snapshot_liquefied[k] ? 1 : 0;
   return n;
 }
 

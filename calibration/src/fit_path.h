@@ -1,6 +1,6 @@
-// Internal to calibration_fit: the model strain grid of a DEM test and the fit's drained
-// axisymmetric path (docs/calibration.md, "Objective"), templated on the scalar (double for
-// costs, ceres::Jet seeded on the free parameters for Jacobians).
+// Internal to calibration_fit: the model strain grid of a DEM test and the fit's axisymmetric
+// path (drained, constant p or undrained; docs/calibration.md, "Objective"), templated on the
+// scalar (double for costs, ceres::Jet seeded on the free parameters for Jacobians).
 #pragma once
 
 #include <Eigen/Dense>
@@ -18,21 +18,32 @@ namespace fit_detail {
 
 
 /// Model strain grid of one test: 0, then the selected series rows and the snapshots, with
-/// intermediate points where two are more than max_strain_step apart (0: no limit). The lateral
-/// stress is held only at the grid's points, so the path's error falls with the square of its
-/// step (docs/calibration.md, "Objective").
+/// intermediate points where two are more than max_strain_step apart in |eps_a| (0: no limit).
+/// The lateral stress is held only at the grid's points, so the path's error falls with the
+/// square of its step (docs/calibration.md, "Objective"). Steps carry the signed axial increment
+/// (value[2], negative in extension) and p0 (value[0]).
 struct Grid {
   std::vector<PathStep> steps;
   std::vector<int> rows;           ///< selected series rows
   std::vector<int> row_at;         ///< grid index of each selected row
   std::vector<int> snapshot_at;    ///< grid index of each snapshot (-1: beyond the series)
+  /// Whether the DEM specimen had liquefied (p < kLiquefiedMeanStress p0) at each selected row
+  /// and each snapshot (the series row nearest in strain): no q/p or a_c residual there.
+  std::vector<char> row_liquefied, snapshot_liquefied;
 };
 Grid make_grid(const TestData& t, int max_points, double max_strain_step = 0.0);
 
+/// The residuals of a stage. `volumetric` is the response to the lateral constraint: the
+/// volumetric strain on the drained and constant-p paths, the mean stress on the undrained ones.
 struct ResidualSpec {
   bool eta = true, volumetric = true, fabric = true;
   double eta_scale = 0.05, volumetric_scale = 0.005, fabric_scale = 0.05;
+  double mean_stress_scale = 0.05;  ///< relative to max(p0, p_DEM)
 };
+
+/// What holds the lateral axes of the fit's path (TestPath without the direction).
+enum class Lateral { kStress, kMeanStress, kVolume };
+Lateral lateral_of(TestPath path);
 
 /// Residuals of one test under spec (series rows, then snapshots).
 int count_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec);
@@ -64,17 +75,19 @@ void set_values(Tensor<T>& x, const Tensor<double>& v) {
     for (int j = 0; j < 3; ++j) x(i, j).a = v(i, j);
 }
 
-/// Drained axisymmetric triaxial path (docs/calibration.md): eps_zz stepped, eps_xx = eps_yy =
-/// eps_r the one unknown, sigma_xx = sigma_yy held at p0 through sigma_xx + sigma_yy = 2 p0. The
-/// Newton derivative comes from a Jet<1> seeded on both lateral components together, which keeps
-/// the symmetry (a strain tangent seeded on eps_xx alone excites the stiff asymmetric lateral
-/// mode, docs/model.md §4). Values in double; with T = Jet the derivative parts by the implicit
-/// function theorem at the converged values, as in mixed_increment. Attempted substeps of all
-/// updates are added to *substeps.
+/// Axisymmetric triaxial path (docs/calibration.md): eps_zz stepped by value[2] of each step,
+/// eps_xx = eps_yy = eps_r. Lateral::kVolume: eps_r = -d eps_zz / 2 (constant volume). Otherwise
+/// eps_r is the one unknown, solved so that w_r (sigma_xx + sigma_yy)/2 + w_z sigma_zz = p0
+/// (value[0]): (w_r, w_z) = (1, 0) holds the lateral stress (Lateral::kStress), (2/3, 1/3) the
+/// mean stress (kMeanStress). The Newton derivative comes from a Jet<1> seeded on both lateral
+/// components together, which keeps the symmetry (a strain tangent seeded on eps_xx alone excites
+/// the stiff asymmetric lateral mode, docs/model.md §4). Values in double; with T = Jet the
+/// derivative parts by the implicit function theorem at the converged values, as in
+/// mixed_increment. Attempted substeps of all updates are added to *substeps.
 template <typename T>
 PathResult<T> axisymmetric_path(const Parameters<T>& par, const State<T>& initial,
                                 const std::vector<PathStep>& steps, const DriverOptions& options,
-                                long* substeps = nullptr) {
+                                Lateral lateral = Lateral::kStress, long* substeps = nullptr) {
   using J1 = ceres::Jet<double, 1>;
   const Parameters<double> par_value = cast_parameters<double>(par);
   const Parameters<J1> par_j1 = cast_parameters<J1>(par_value);
@@ -85,9 +98,27 @@ PathResult<T> axisymmetric_path(const Parameters<T>& par, const State<T>& initia
   result.rows.push_back(make_record(par, initial, result.strain, UpdateStatus::kOk));
   double guess = 0.0;  // lateral strain per unit axial strain of the last increment
   // One increment d_axial from (state, strain); false where it cannot be integrated.
+  // The held combination of the stresses (Lateral::kStress or kMeanStress).
+  const double w_r = lateral == Lateral::kMeanStress ? 2.0 / 3.0 : 1.0;
+  const double w_z = lateral == Lateral::kMeanStress ? 1.0 / 3.0 : 0.0;
+  auto held = [&](const auto& stress) {
+    return w_r * 0.5 * (stress(0, 0) + stress(1, 1)) + w_z * stress(2, 2);
+  };
   auto advance = [&](State<T>& state, Tensor<T>& strain, double d_axial, double target,
                      UpdateStatus& worst) {
-    double slope = 0.0;  // d ((sxx + syy)/2) / d eps_r
+    if (lateral == Lateral::kVolume) {  // the strain is given: no unknown, no chain rule
+      Tensor<T> deps = Tensor<T>::Zero();
+      deps(0, 0) = deps(1, 1) = T(-0.5 * d_axial);
+      deps(2, 2) = T(d_axial);
+      State<T> next;
+      const UpdateStatus status = update_state(par, state, deps, next, options.integration, &used);
+      if (status == UpdateStatus::kFailed) return false;
+      if (status == UpdateStatus::kUnreliable) worst = UpdateStatus::kUnreliable;
+      state = next;
+      strain += deps;
+      return true;
+    }
+    double slope = 0.0;  // d held / d eps_r
     const State<double> start = cast_state<double>(state);
     const State<J1> start_j1 = cast_state<J1>(start);
     auto evaluate = [&](double eps_r, State<J1>& end) {
@@ -105,7 +136,7 @@ PathResult<T> axisymmetric_path(const Parameters<T>& par, const State<T>& initia
     for (int iteration = 0; iteration < options.max_newton_iterations; ++iteration) {
       status = evaluate(eps_r, end);
       if (status == UpdateStatus::kFailed) break;
-      const J1 r = 0.5 * (end.stress(0, 0) + end.stress(1, 1)) - target;
+      const J1 r = held(end.stress) - target;
       slope = r.v[0];
       if (std::abs(r.a) <= options.stress_tolerance * p_scale) {
         converged = true;
@@ -127,7 +158,7 @@ PathResult<T> axisymmetric_path(const Parameters<T>& par, const State<T>& initia
       const UpdateStatus jet_status = update_state(par, state, deps, next, options.integration, &used);
       if (jet_status == UpdateStatus::kFailed) return false;
       if (jet_status == UpdateStatus::kUnreliable) status = jet_status;
-      const auto r_v = (0.5 * (next.stress(0, 0).v + next.stress(1, 1).v)).eval();
+      const auto r_v = held(next.stress).v;
       const Eigen::Matrix<double, Eigen::Dynamic, 1> delta = -r_v / slope;  // d eps_r / d par
       chain(next.stress, end.stress, delta);
       chain(next.void_ratio, end.void_ratio, delta);
@@ -165,11 +196,35 @@ PathResult<T> axisymmetric_path(const Parameters<T>& par, const State<T>& initia
         return apply(state, strain, 0.5 * d_axial, target, worst, cuts + 1) &&
                apply(state, strain, 0.5 * d_axial, target, worst, cuts + 1);
       };
+  // Static liquefaction: under constant volume the model's p can fall towards 0, where the
+  // update cannot go on (its stiffness vanishes with p). From the first such failure below
+  // kLiquefiedMeanStress p0 the point stays at its last state (no effective stress, no shear:
+  // the DEM's liquefied specimens stay at p' ~ 0, docs/dem.md) and the rows say kUnreliable.
+  const double p_initial = value_of(initial.stress.trace()) / 3.0;
+  bool liquefied = false;
+  auto hold = [&](double d_axial) {
+    Tensor<T> deps = Tensor<T>::Zero();
+    deps(0, 0) = deps(1, 1) = T(-0.5 * d_axial);
+    deps(2, 2) = T(d_axial);
+    result.strain += deps;
+    result.status = UpdateStatus::kUnreliable;
+    result.rows.push_back(make_record(par, result.state, result.strain, UpdateStatus::kUnreliable));
+  };
   for (const PathStep& step : steps) {
+    if (liquefied) {
+      hold(step.value[2]);
+      continue;
+    }
     UpdateStatus worst = UpdateStatus::kOk;
     State<T> state = result.state;
     Tensor<T> strain = result.strain;
     if (!apply(state, strain, step.value[2], step.value[0], worst, 0)) {
+      if (lateral == Lateral::kVolume &&
+          value_of(result.state.stress.trace()) / 3.0 < kLiquefiedMeanStress * p_initial) {
+        liquefied = true;
+        hold(step.value[2]);
+        continue;
+      }
       result.status = UpdateStatus::kFailed;
       result.rows.push_back(make_record(par, result.state, result.strain, UpdateStatus::kFailed));
       break;
@@ -189,7 +244,7 @@ PathResult<T> run_test(const TestData& t, const Grid& g, const std::array<T, kNu
   // F0 = A0 / a_cs with an axisymmetric A0 of triaxial value a_c0 (||A0|| = sqrt(2/3) a_c0).
   const T fabric_norm = T(kSqrtTwoThirds * t.a_c0) / v[kAcsIndex];
   const State<T> s0 = isotropic_state(T(t.p0), T(t.e0), triaxial_deviator(fabric_norm));
-  return axisymmetric_path(parameters_of(v), s0, g.steps, driver, substeps);
+  return axisymmetric_path(parameters_of(v), s0, g.steps, driver, lateral_of(t.path), substeps);
 }
 
 /// The normalised residuals (model - DEM)/scale of a path, in the order of count_residuals.
@@ -200,14 +255,20 @@ void path_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec, 
   const std::size_t rows = g.rows.size();
   if (spec.eta)
     for (std::size_t i = 1; i < rows; ++i)
-      r[k++] = (path.rows[g.row_at[i]].eta - t.eta[g.rows[i]]) / spec.eta_scale;
-  if (spec.volumetric)
+      if (!g.row_liquefied[i])
+        r[k++] = (path.rows[g.row_at[i]].eta - t.eta[g.rows[i]]) / spec.eta_scale;
+  if (spec.volumetric && is_undrained(t.path))
+    for (std::size_t i = 1; i < rows; ++i) {
+      const double p_dem = t.p[g.rows[i]];
+      r[k++] = (path.rows[g.row_at[i]].p - p_dem) / (spec.mean_stress_scale * std::max(t.p0, p_dem));
+    }
+  else if (spec.volumetric)
     for (std::size_t i = 1; i < rows; ++i)
       r[k++] = (path.rows[g.row_at[i]].volumetric_strain - t.volumetric_strain[g.rows[i]]) /
                spec.volumetric_scale;
   if (spec.fabric)
     for (std::size_t i = 1; i < t.a_c.size(); ++i)
-      if (g.snapshot_at[i] >= 0)
+      if (g.snapshot_at[i] >= 0 && !g.snapshot_liquefied[i])
         r[k++] = (a_cs * path.rows[g.snapshot_at[i]].fabric_triaxial - t.a_c[i]) / spec.fabric_scale;
 }
 

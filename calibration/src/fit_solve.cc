@@ -301,7 +301,8 @@ StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Gr
                         const FitOptions& options, const FitVector& lower, const FitVector& upper,
                         int starts, std::uint64_t seed, const std::string& stage_name) {
   // The Jet size follows the number of free parameters (Jet arithmetic costs about its size):
-  // 1 (fabric stage), 6 (plastic), 10 (joint), 16 (anything larger).
+  // 1 (fabric stage), 6 (plastic), 10 (joint), 11 (joint with c, when an extension test is
+  // fitted), 16 (anything larger).
   if (free.size() <= 1)
     return solve_stage_sized<1>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
                                 stage_name);
@@ -310,6 +311,9 @@ StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Gr
                                 stage_name);
   if (free.size() <= 10)
     return solve_stage_sized<10>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
+                                 stage_name);
+  if (free.size() <= 11)
+    return solve_stage_sized<11>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
                                  stage_name);
   return solve_stage_sized<16>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
                                stage_name);

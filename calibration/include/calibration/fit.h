@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,30 @@ class Problem;
 
 namespace calibration {
 
-/// One drained triaxial DEM test (sigma_3 constant) as data for the fit.
+/// The loading path of a DEM test as the fit's model path follows it (docs/dem.md, "Loading
+/// paths"; the spellings are the run file's /loading path): z is driven, x and y are held alike.
+enum class TestPath {
+  kDrainedCompression,    ///< sigma_xx = sigma_yy = sigma_3, eps_zz rising
+  kDrainedExtension,      ///< sigma_xx = sigma_yy = sigma_3, eps_zz falling
+  kConstantPCompression,  ///< (sigma_xx + sigma_yy + sigma_zz)/3 = p0, eps_zz rising
+  kUndrainedCompression,  ///< constant volume: eps_xx = eps_yy = -eps_zz/2, eps_zz rising
+  kUndrainedExtension,    ///< constant volume, eps_zz falling
+};
+/// The path of a run file's /loading path name; throws std::runtime_error for a path the fit
+/// cannot follow (true_triaxial: x and y differ) or an unknown name, naming it.
+TestPath parse_test_path(const std::string& name);
+const char* to_string(TestPath path);
+/// +1 where eps_zz rises (compression), -1 where it falls (extension).
+double axial_direction(TestPath path);
+bool is_undrained(TestPath path);
+/// sigma_xx = sigma_yy = sigma_3 held (drained compression or extension).
+bool holds_lateral_stress(TestPath path);
+
+/// Below this fraction of p0 the DEM specimen has liquefied: its q/p and fabric are the noise of
+/// a few contacts (docs/dem.md), so rows and snapshots there carry no q/p or a_c residual.
+inline constexpr double kLiquefiedMeanStress = 0.05;
+
+/// One axisymmetric DEM element test (the paths of TestPath) as data for the fit.
 struct TestData {
   std::string name;             ///< short name (the run file's stem)
   std::string source;           ///< the file(s) it was read from
@@ -32,6 +56,7 @@ struct TestData {
   double e0 = 0.0;              ///< initial void ratio
   double a_c0 = 0.0;            ///< initial triaxial fabric anisotropy a_c (first snapshot)
   double friction = 0.0;        ///< interparticle friction mu (SFF relation; 0 if unknown)
+  TestPath path = TestPath::kDrainedCompression;
   /// Series rows (walls): axial strain, q/p, volumetric strain, void ratio, mean stress [Pa].
   std::vector<double> axial_strain, eta, volumetric_strain, void_ratio, p;
   /// Snapshots (SFF table): axial strain, contact-normal anisotropy a_c, normal-force
@@ -40,17 +65,20 @@ struct TestData {
 };
 
 /// Reads a run file: /series (axial_strain, eta, volumetric_strain, void_ratio, p) and the SFF
-/// table /analysis/sff (axial_strain, a_c, a_n, m, eta), the friction from the stored config.
-/// Throws std::runtime_error naming the file and what is missing (e.g. no /analysis/sff).
+/// table /analysis/sff (axial_strain, a_c, a_n, m, eta), the friction from the stored config,
+/// the loading path from /loading. Throws std::runtime_error naming the file and what is missing
+/// (e.g. no /analysis/sff) or a path the fit cannot follow.
 TestData read_run_file(const std::string& path);
 
 /// Reads the reduced CSV pair (series columns and SFF columns, with headers, as
-/// bench/reference/*_series.csv and *_sff.csv); friction as given.
+/// bench/reference/*_series.csv and *_sff.csv); friction and path as given.
 TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv,
-                       const std::string& name, double friction);
+                       const std::string& name, double friction,
+                       TestPath path = TestPath::kDrainedCompression);
 
 /// Throws std::runtime_error naming the test and the problem: empty or unequal curves, fewer
-/// than 3 rows, non-finite values, non-increasing axial strain, p0 or e0 out of range.
+/// than 3 rows or no snapshot, non-finite values, an axial strain that does not move in the
+/// path's direction (rising in compression, falling in extension), p0 or e0 out of range.
 void validate_test_data(const TestData& test);
 
 /// The fitted vector: the 15 model parameters (order of Parameters) and a_cs, the critical-state
@@ -83,6 +111,9 @@ struct FitOptions {
   double eta_scale = 0.05;          ///< q/p
   double volumetric_scale = 0.005;  ///< volumetric strain
   double fabric_scale = 0.05;       ///< a_c
+  /// Mean stress on the undrained paths, relative to max(p0, p_DEM): their response to the
+  /// volume constraint, in place of the volumetric strain (docs/calibration.md, "Objective").
+  double mean_stress_scale = 0.05;
   int max_points = 60;              ///< series rows per test used in the fit (evenly subsampled)
   /// Largest axial-strain increment of the fit's path: longer gaps between its rows are split
   /// (0: the rows and snapshots only). The lateral stress is held at the increments' ends only, so
@@ -110,8 +141,8 @@ struct FitOptions {
   std::function<void(const std::string&)> progress;
   FitVector initial = default_initial();  ///< start values (a_cs is measured, this is a fallback)
   FitVector lower = default_lower(), upper = default_upper();
-  /// Never fitted: c (no extension tests) and m (acst-model.md: fixed 0.01).
-  std::vector<std::string> fixed = {"c", "m"};
+  /// Never fitted: m (acst-model.md: fixed 0.01). c is held too when no test is an extension.
+  std::vector<std::string> fixed = {"m"};
   bool verbose = false;  ///< Ceres progress to stdout
 
   static DriverOptions fit_driver_options();
@@ -129,11 +160,14 @@ struct ParameterEstimate {
   std::string stage;             ///< the stage that set it ("" = initial value)
 };
 
-/// Errors of the model against one test, over the rows and snapshots it was fitted to.
+/// Errors of the model against one test over every series row and snapshot (q/p and a_c where
+/// the DEM specimen has not liquefied, kLiquefiedMeanStress).
 struct TestErrors {
   std::string name;
   int rows = 0, snapshots = 0;
+  std::string path;  ///< the loading path (to_string(TestPath))
   double rms_eta = 0.0, rms_volumetric = 0.0, rms_void_ratio = 0.0, rms_a_c = 0.0;
+  double rms_p_ratio = 0.0;  ///< RMS of (p_model - p_DEM)/p0
   double max_abs_eta = 0.0;
   double rms_normalised = 0.0;  ///< RMS of all normalised residuals of the joint objective
   std::string status;           ///< model status along the path
@@ -196,9 +230,13 @@ CalibrationResult calibrate(const std::vector<TestData>& tests, const FitOptions
 /// Model curves of a test at x, on the strains of the test's series rows and snapshots.
 struct ModelCurves {
   std::vector<double> axial_strain, eta, volumetric_strain, void_ratio;  ///< at the series rows
+  std::vector<double> p;  ///< mean stress [Pa] at the series rows
   std::vector<double> a_c;                                              ///< at the snapshots
   UpdateStatus status = UpdateStatus::kOk;
   int rows_reached = 0;  ///< series rows reached before a failure
+  /// Undrained: the axial strain from which the model, liquefied, was held at its last state
+  /// (fit_path.h); NaN where it was not.
+  double liquefied_at = std::numeric_limits<double>::quiet_NaN();
 };
 ModelCurves simulate_test(const TestData& test, const FitVector& x, const DriverOptions& driver,
                           double max_strain_step = 0.0);
