@@ -89,7 +89,10 @@ class Pipeline:
         names = self.scene["specimens"]
         runs = [self.run_file(n) for n in names]
         fitted = [self.run_file(n) for n in self.scene["calibrate_on"]]
-        checked = fitted + [self.run_file(n) for n in self.scene.get("held_back", [])]
+        held = [self.run_file(n) for n in self.scene.get("held_back", [])]
+        # fe-check's element runs drained compression only; the calibration predicts the others
+        checked = [self.run_file(n) for n in self.scene["calibrate_on"] + self.scene.get("held_back", [])
+                   if specimen_matrix.loading_path(n) == "drained_compression"]
         made_by_triaxial = {r: "triaxial" for r in runs}
         if stage == "prepare":
             if self.scene.get("matrix"):
@@ -128,8 +131,10 @@ class Pipeline:
                          made_by=made_by_triaxial)]
         if stage == "calibrate":
             fit = self.path("calibrate")
-            return [Task(stage, "fit", fitted, [os.path.join(fit, "parameters.json"), os.path.join(fit, "summary.md")],
-                         [[self.sffcal, "calibrate", *fitted, "-o", fit,
+            hold_out = ["--hold-out", *held] if held else []
+            return [Task(stage, "fit", fitted + held,
+                         [os.path.join(fit, "parameters.json"), os.path.join(fit, "summary.md")],
+                         [[self.sffcal, "calibrate", *fitted, *hold_out, "-o", fit,
                            *self.scene.get("calibrate", {}).get("options", [])],
                           [PY, os.path.join(ROOT, "scripts", "plot_calibration.py"), fit]],
                          made_by=made_by_triaxial)]

@@ -19,7 +19,8 @@ struct CalibrateCommandOptions {
   std::uint64_t seed = 1;        ///< seed of the extra starts
   std::string loss = "none";     ///< none | huber | cauchy
   int max_points = 60;           ///< series rows per test in the fit
-  double max_strain_step = 0.0;  ///< largest axial-strain increment of the fit's path (0: rows only)
+  /// Largest axial-strain increment of the fit's path (0: rows only); as FitOptions.
+  double max_strain_step = 0.001;
   bool verbose = false;          ///< Ceres' own iteration table as well
   /// Threads over tests (results do not depend on it); 0: OpenMP's default (OMP_NUM_THREADS,
   /// else all cores).

@@ -181,6 +181,60 @@ bool scaled_standard_errors(ceres::Problem& problem, double* block, int size, do
   return true;
 }
 
+bool autocorrelation_robust_standard_errors(const double* jacobian, int stride, int k,
+                                            const double* residuals,
+                                            const std::vector<int>& series_lengths,
+                                            std::vector<double>& errors, double* mean_bandwidth) {
+  int n = 0;
+  for (int length : series_lengths) n += length;
+  if (k < 1 || n <= k) return false;
+  using Matrix = Eigen::MatrixXd;
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+      all(jacobian, n, stride);
+  const Matrix J = all.leftCols(k);
+  const Eigen::Map<const Eigen::VectorXd> r(residuals, n);
+  const Eigen::FullPivLU<Matrix> lu(J.transpose() * J);
+  if (!lu.isInvertible()) return false;
+  const Matrix bread = lu.inverse();
+  Matrix meat = Matrix::Zero(k, k);
+  double bandwidth_sum = 0.0;
+  int from = 0;
+  for (int length : series_lengths) {
+    const Eigen::VectorXd r_s = r.segment(from, length);
+    // Scores g_i = r_i J_i of this series, and the residuals' lag-1 autocorrelation.
+    const Matrix g = (J.middleRows(from, length).array().colwise() * r_s.array()).matrix();
+    from += length;
+    const double c0 = r_s.squaredNorm();
+    const double c1 = length > 1 ? r_s.head(length - 1).dot(r_s.tail(length - 1)) : 0.0;
+    const double rho = c0 > 0.0 ? std::clamp(c1 / c0, 0.0, 0.97) : 0.0;
+    // Andrews (1991), Bartlett kernel, AR(1): L = 1.1447 (alpha n)^(1/3),
+    // alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2).
+    const double alpha = 4.0 * rho * rho / std::pow((1.0 - rho) * (1.0 + rho), 2);
+    const int bandwidth = std::max(
+        0, std::min(length - 1, static_cast<int>(std::ceil(1.1447 * std::cbrt(alpha * length)))));
+    bandwidth_sum += bandwidth;
+    meat += g.transpose() * g;
+    for (int lag = 1; lag <= bandwidth; ++lag) {
+      const double w = 1.0 - static_cast<double>(lag) / (bandwidth + 1);
+      const Matrix cross = g.topRows(length - lag).transpose() * g.bottomRows(length - lag);
+      meat += w * (cross + cross.transpose());
+    }
+  }
+  const Matrix covariance = bread * meat * bread;
+  std::vector<double> result(static_cast<std::size_t>(k), 0.0);
+  for (int j = 0; j < k; ++j) {
+    const double v = covariance(j, j);
+    if (!(v >= 0.0) || !std::isfinite(v)) return false;
+    result[j] = std::sqrt(v);
+  }
+  errors = std::move(result);
+  if (mean_bandwidth)
+    *mean_bandwidth = series_lengths.empty()
+                          ? 0.0
+                          : bandwidth_sum / static_cast<double>(series_lengths.size());
+  return true;
+}
+
 ModelCurves simulate_test(const TestData& t, const FitVector& x, const DriverOptions& driver,
                           double max_strain_step) {
   const Grid g = make_grid(t, std::numeric_limits<int>::max(), max_strain_step);
@@ -368,7 +422,8 @@ class Calibration {
   }
 
  private:
-  void set(int i, double value, double error, const char* stage);
+  void set(int i, double value, double error, const char* stage,
+           double error_independent = -1.0);
   // The free ones of `wanted`: not fixed by the user, and c_h only where identifiable.
   std::vector<int> free_of(std::initializer_list<int> wanted) const;
   // One least-squares stage over every test's path, recorded in the result.
@@ -424,9 +479,11 @@ Calibration::Calibration(const std::vector<TestData>& tests, const FitOptions& o
     result_.notes.push_back("c held (no drained extension test: M_e is not measured)");
 }
 
-void Calibration::set(int i, double value, double error, const char* stage) {
+void Calibration::set(int i, double value, double error, const char* stage,
+                      double error_independent) {
   x_[i] = std::clamp(value, lower_[i], upper_[i]);
   result_.estimates[i].standard_error = error;
+  result_.estimates[i].standard_error_independent = error_independent;
   result_.estimates[i].fixed = false;
   result_.estimates[i].stage = stage;
 }
@@ -627,9 +684,12 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
     throw std::runtime_error(std::string("calibrate: stage '") + to_string(stage) +
                              "' found no usable solution from any start: " + r.message);
   for (std::size_t j = 0; j < free.size(); ++j)
-    set(free[j], r.x[free[j]], r.errors.empty() ? -1.0 : r.errors[j], to_string(stage));
-  if (!r.errors.empty())
+    set(free[j], r.x[free[j]], r.errors.empty() ? -1.0 : r.errors[j], to_string(stage),
+        r.errors.empty() ? -1.0 : r.errors_independent[j]);
+  if (!r.errors.empty()) {
     result_.covariance_scale = r.scale;
+    result_.mean_bandwidth = r.mean_bandwidth;
+  }
   else
     result_.notes.push_back(std::string("stage ") + to_string(stage) +
                             ": covariance not available (rank deficient or too few residuals)");

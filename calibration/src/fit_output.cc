@@ -77,14 +77,16 @@ std::string summary_markdown(const CalibrationResult& r) {
     s << "\nHeld back from the fit (predicted with the fitted parameters):\n\n";
     errors_table(s, r.predictions);
   }
-  s << "\n| parameter | value | standard error | lower | upper | at bound | stage |\n"
-       "|---|---|---|---|---|---|---|\n";
+  s << "\n| parameter | value | standard error | SE if independent | lower | upper | at bound | "
+       "stage |\n|---|---|---|---|---|---|---|---|\n";
   const auto& names = fit_parameter_names();
   for (int i = 0; i < kNumFitParameters; ++i) {
     const ParameterEstimate& e = r.estimates[i];
     s << "| " << names[i] << " | " << number(e.value, 5) << " | "
       << (e.standard_error >= 0.0 ? number(e.standard_error, 3) : std::string("-")) << " | "
-      << number(e.lower) << " | " << number(e.upper) << " | " << (e.at_bound ? "yes" : "")
+      << (e.standard_error_independent >= 0.0 ? number(e.standard_error_independent, 3)
+                                              : std::string("-"))
+      << " | " << number(e.lower) << " | " << number(e.upper) << " | " << (e.at_bound ? "yes" : "")
       << " | " << (e.fixed ? "fixed" : e.stage) << " |\n";
   }
   s << "\nCritical states (last window of each test):\n\n| test | p [Pa] | e | q/p | a_c |\n"
@@ -163,6 +165,10 @@ std::string write_calibration_outputs(const std::string& folder,
                       {"cost_evaluations", s.timing.cost_evaluations},
                       {"jacobian_evaluations", s.timing.jacobian_evaluations},
                       {"substeps_per_step", s.timing.substeps_per_step}});
+  Json independent_errors = Json::object();
+  for (int i = 0; i < kNumFitParameters; ++i)
+    if (result.estimates[i].standard_error_independent >= 0.0)
+      independent_errors[names[i]] = result.estimates[i].standard_error_independent;
   const char* loss = options.loss == Loss::kHuber    ? "huber"
                      : options.loss == Loss::kCauchy ? "cauchy"
                                                      : "none";
@@ -190,6 +196,12 @@ std::string write_calibration_outputs(const std::string& folder,
                     {"a_c", options.fabric_scale},
                     {"mean_stress_relative", options.mean_stress_scale}}},
                   {"covariance_scale_s2", result.covariance_scale},
+                  {"standard_errors",
+                   "robust to residuals correlated along each curve (Newey-West sandwich, "
+                   "Bartlett kernel, Andrews AR(1) bandwidth); standard_errors_independent: "
+                   "s^2 (J^T J)^-1"},
+                  {"mean_bandwidth", result.mean_bandwidth},
+                  {"standard_errors_independent", independent_errors},
                   {"notes", result.notes}};
   if (result.sff.available)
     extra["sff_relation"] = {{"coefficients", result.sff.coefficients},

@@ -76,18 +76,29 @@ Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
   return g;
 }
 
-int count_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec) {
-  int n = 0;
+std::vector<int> residual_series(const TestData& t, const Grid& g, const ResidualSpec& spec) {
+  std::vector<int> lengths;
   const int rows = static_cast<int>(g.rows.size()) - 1;  // the first row is the initial state
-  if (spec.eta)
+  if (spec.eta) {
+    int n = 0;
     for (int i = 1; i <= rows; ++i) n += g.row_liquefied[i] ? 0 : 1;
-  if (spec.volumetric) n += rows;
-  if (spec.fabric)
+    lengths.push_back(n);
+  }
+  if (spec.volumetric) lengths.push_back(rows);
+  if (spec.fabric) {
+    int n = 0;
     for (std::size_t k = 1; k < t.a_c.size(); ++k)
       n += g.snapshot_at[k] >= 0 && !g.snapshot_liquefied[k] ? 1 : 0;
-  return n;
+    lengths.push_back(n);
+  }
+  return lengths;
 }
 
+int count_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec) {
+  int n = 0;
+  for (int length : residual_series(t, g, spec)) n += length;
+  return n;
+}
 
 }  // namespace fit_detail
 }  // namespace calibration

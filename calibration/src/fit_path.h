@@ -45,7 +45,11 @@ struct ResidualSpec {
 enum class Lateral { kStress, kMeanStress, kVolume };
 Lateral lateral_of(TestPath path);
 
-/// Residuals of one test under spec (series rows, then snapshots).
+/// The lengths of the residual series of one test under spec, in the order path_residuals
+/// writes them: q/p over the rows, eps_v (or p) over the rows, a_c over the snapshots (each only
+/// where spec asks for it). Residuals within a series are neighbours in strain.
+std::vector<int> residual_series(const TestData& t, const Grid& g, const ResidualSpec& spec);
+/// Residuals of one test under spec: the sum of residual_series.
 int count_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec);
 
 template <typename T>

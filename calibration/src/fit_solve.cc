@@ -84,6 +84,9 @@ class TestsEvaluator {
   }
 
   double residual(int i) const { return residuals_[static_cast<std::size_t>(i)]; }
+  const double* residuals() const { return residuals_.data(); }
+  /// num_residuals() rows of S values (valid after ensure(x, true)).
+  const double* jacobian() const { return jacobian_.data(); }
   const double* jacobian_row(int i) const { return &jacobian_[static_cast<std::size_t>(i) * S]; }
   const StageTiming& timing() const { return timing_; }
 
@@ -266,14 +269,23 @@ StageResult solve_stage_sized(const std::vector<TestData>& tests, const std::vec
       best.residuals = residuals;
       for (int j = 0; j < k; ++j) best.x[free[j]] = block[j];
       best.message = summary.BriefReport();
-      std::vector<double> errors;
+      std::vector<double> errors, robust;
       double scale = 0.0;
+      best.errors.clear();
+      best.errors_independent.clear();
       if (scaled_standard_errors(problem, block.data(), S, summary.final_cost, residuals, k,
-                                 errors, &scale)) {
-        best.errors.assign(errors.begin(), errors.begin() + k);
-        best.scale = scale;
-      } else {
-        best.errors.clear();
+                                 errors, &scale) &&
+          evaluator.ensure(block.data(), true)) {
+        std::vector<int> series;
+        for (std::size_t t = 0; t < tests.size(); ++t)
+          for (int length : residual_series(tests[t], grids[t], spec)) series.push_back(length);
+        if (autocorrelation_robust_standard_errors(evaluator.jacobian(), S, k,
+                                                   evaluator.residuals(), series, robust,
+                                                   &best.mean_bandwidth)) {
+          best.errors = robust;
+          best.errors_independent.assign(errors.begin(), errors.begin() + k);
+          best.scale = scale;
+        }
       }
     } else if (best.message.empty() && !usable) {
       best.message = "start " + std::to_string(start) + ": " + summary.message;

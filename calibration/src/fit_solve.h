@@ -16,8 +16,12 @@ struct StageResult {
   FitVector x;
   double initial_cost = 0.0, final_cost = std::numeric_limits<double>::infinity();
   int residuals = 0, starts_run = 0;
-  std::vector<double> errors;  // standard errors of the free parameters (empty: none)
-  double scale = 0.0;
+  /// Standard errors of the free parameters, robust to residuals correlated along each curve
+  /// (autocorrelation_robust_standard_errors), and as if independent (scaled_standard_errors);
+  /// empty: none.
+  std::vector<double> errors, errors_independent;
+  double scale = 0.0;           // s^2 of the independent errors
+  double mean_bandwidth = 0.0;  // of the robust errors, in residuals
   std::string message;
   StageTiming timing;          // summed over the starts
 };

@@ -46,6 +46,12 @@ def matrix():
                                 "path": '"drained_extension"'}
 
 
+def loading_path(name):
+    """The loading path of a specimen of matrix() (docs/dem.md, "Loading paths")."""
+    keys = dict(matrix())[name]
+    return keys.get("path", '"drained_compression"').strip('"')
+
+
 def set_key(text, key, value):
     pattern = re.compile(rf"^({re.escape(key)}\s*=\s*)([^#\n]*?)(\s*#.*)?$", re.M)
     if not pattern.search(text):

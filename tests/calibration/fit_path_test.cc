@@ -33,7 +33,7 @@ FitVector stored_parameters() {
 // Largest |q/p - q/p of the converged path| over the series rows.
 double path_error(const TestData& t, const FitVector& x, double step,
                   const ModelCurves& converged) {
-  const ModelCurves c = simulate_test(t, x, FitOptions::fit_driver_options(), step);
+  const ModelCurves c = simulate_test(t, x, FitOptions::report_driver_options(), step);
   double worst = 0.0;
   for (std::size_t i = 0; i < c.eta.size(); ++i)
     worst = std::max(worst, std::abs(c.eta[i] - converged.eta[i]));
@@ -44,7 +44,7 @@ TEST(FitPath, ErrorFallsWithTheSquareOfTheStepAndTheReportsAreWithin1e3) {
   const FitVector x = stored_parameters();
   for (const char* run : {"matrix/iso_dense_100kPa.h5", "matrix/iso_loose_100kPa.h5"}) {
     const TestData t = read_run_file(kData + run);
-    const ModelCurves converged = simulate_test(t, x, FitOptions::fit_driver_options(), 1e-4);
+    const ModelCurves converged = simulate_test(t, x, FitOptions::report_driver_options(), 1e-4);
     ASSERT_EQ(converged.rows_reached, static_cast<int>(t.axial_strain.size())) << run;
     const double rows_only = path_error(t, x, 0.0, converged);
     const double coarse = path_error(t, x, 2e-3, converged);

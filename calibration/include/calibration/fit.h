@@ -119,7 +119,9 @@ struct FitOptions {
   /// (0: the rows and snapshots only). The lateral stress is held at the increments' ends only, so
   /// the path's error in q/p falls with the square of the step: on the stored dense 100 kPa run,
   /// 2.0e-2 with the 60 rows alone, 3.6e-3 at 0.0025, 9.1e-4 at 0.001 (docs/calibration.md).
-  double fit_max_strain_step = 0.0;
+  /// 0.001 by default (issue 19: within 1e-3 of a converged path), at about twice the time of
+  /// the rows alone on the 500-clump matrix.
+  double fit_max_strain_step = 0.001;
   /// The same for the reported errors and curves after the fit (TestErrors, the CSV curves):
   /// every series row and at most this step, within 1e-3 in q/p of a converged path.
   double report_max_strain_step = 0.001;
@@ -154,7 +156,13 @@ struct FitOptions {
 
 struct ParameterEstimate {
   double value = 0.0, lower = 0.0, upper = 0.0;
-  double standard_error = -1.0;  ///< < 0: not estimated (fixed, or no covariance)
+  /// From the covariance of the last stage that freed it, robust to residuals correlated along
+  /// each curve (autocorrelation_robust_standard_errors); < 0: not estimated (fixed, or no
+  /// covariance).
+  double standard_error = -1.0;
+  /// The same covariance as if the residuals were independent (s^2 (J^T J)^-1,
+  /// scaled_standard_errors): smaller by the factor the correlation hides (docs/calibration.md).
+  double standard_error_independent = -1.0;
   bool fixed = true;             ///< not a free parameter of any stage
   bool at_bound = false;         ///< within 1e-4 of the range of a bound (covariance ignores bounds)
   std::string stage;             ///< the stage that set it ("" = initial value)
@@ -214,6 +222,8 @@ struct CalibrationResult {
   FitVector values{};
   std::array<ParameterEstimate, kNumFitParameters> estimates{};
   double covariance_scale = 0.0;  ///< s^2 = 2 cost / (n - p) of the last Ceres stage
+  /// Mean Bartlett bandwidth (in residuals) of the last stage's robust standard errors.
+  double mean_bandwidth = 0.0;
   std::vector<CriticalStatePoint> critical_states;
   std::vector<StageReport> stages;
   std::vector<TestErrors> errors;
@@ -259,6 +269,21 @@ SffRelationFit fit_sff_relation(const std::vector<TestData>& tests);
 bool scaled_standard_errors(ceres::Problem& problem, double* block, int size, double cost,
                             int n_residuals, int n_free, std::vector<double>& errors,
                             double* scale = nullptr);
+
+/// Standard errors of a least-squares estimate whose residuals are correlated along each of
+/// their series (heteroscedasticity and autocorrelation consistent; Newey & West 1987): the
+/// sandwich (J^T J)^-1 M (J^T J)^-1 with M = sum over series s of sum_ij w_ij r_i r_j J_i^T J_j,
+/// Bartlett weights w_ij = 1 - |i - j|/(L_s + 1) inside a series and 0 across series, the
+/// bandwidth L_s by Andrews' (1991) AR(1) plug-in rule from the series' lag-1 autocorrelation
+/// (docs/calibration.md, "Uncertainty": how it compares with refits on other seeds).
+/// jacobian: n rows of `stride` doubles, the first k used; series_lengths sum to n (a series:
+/// residuals that are neighbours in strain). Returns false (errors untouched) if J^T J is
+/// singular; *mean_bandwidth receives the mean L_s over the series.
+bool autocorrelation_robust_standard_errors(const double* jacobian, int stride, int k,
+                                            const double* residuals,
+                                            const std::vector<int>& series_lengths,
+                                            std::vector<double>& errors,
+                                            double* mean_bandwidth = nullptr);
 
 /// Writes the outputs into folder (created if needed): parameters.json (the parameter file,
 /// readable by read_parameters_json, with bounds, standard errors, at_bound flags and

@@ -1,0 +1,104 @@
+#!/usr/bin/python3
+"""Covariance standard errors against the spread of refits, and the DEM's own noise (issue 19).
+
+usage: bench/calibration/seed_spread.py OUT [--markdown FILE]
+
+OUT is the folder of bench/calibration/seed_spread.sh: OUT/seed<S>/<specimen>.h5 (the runs) and
+OUT/seed<S>/fit/parameters.json (one calibration per seed). Prints, as Markdown:
+- per fitted parameter: the mean over the seeds' fits, the standard deviation of the refits, the
+  root-mean-square of the standard errors the fits reported (robust to correlated residuals, and
+  as if the residuals were independent), and the ratios;
+- per specimen: the DEM's noise, the RMS difference of q/p and of eps_v between two seeds of the
+  same specimen divided by sqrt(2) (RMS over all pairs, on the common strain range, series
+  interpolated linearly onto the first seed's rows), beside the fits' RMS errors of that specimen.
+"""
+import argparse
+import glob
+import itertools
+import json
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+
+def read_series(path):
+    with h5py.File(path, "r") as f:
+        s = f["series"]
+        return {k: s[k][:] for k in ("axial_strain", "eta", "volumetric_strain")}
+
+
+def pair_rms(a, b, key):
+    """RMS of a[key] - b[key] over the strain range both cover (b interpolated onto a's rows)."""
+    top = min(a["axial_strain"][-1], b["axial_strain"][-1])
+    rows = a["axial_strain"] <= top
+    other = np.interp(a["axial_strain"][rows], b["axial_strain"], b[key])
+    return float(np.sqrt(np.mean((a[key][rows] - other) ** 2)))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("folder")
+    parser.add_argument("--markdown", help="also write the tables to this file")
+    args = parser.parse_args()
+    seeds = sorted(glob.glob(os.path.join(args.folder, "seed*", "fit", "parameters.json")))
+    if len(seeds) < 2:
+        sys.exit(f"seed_spread.py: fewer than 2 fits in {args.folder}/seed*/fit (run seed_spread.sh)")
+    fits = [json.load(open(p)) for p in seeds]
+    names = [os.path.basename(os.path.dirname(os.path.dirname(p))) for p in seeds]
+    out = [f"Fits: {', '.join(names)} ({len(fits)} seeds).", "",
+           "| parameter | mean of the fits | SD of the refits | RMS SE (robust) | SD / SE | "
+           "RMS SE (if independent) | SD / SE |", "|---|---|---|---|---|---|---|"]
+    entries = dict(fits[0]["parameters"])
+    entries["a_cs"] = fits[0]["fabric_normalisation"]["a_cs"]
+    for name in entries:
+        def entry(fit):
+            return fit["fabric_normalisation"]["a_cs"] if name == "a_cs" else fit["parameters"][name]
+        if any(entry(f).get("fixed", False) for f in fits):
+            continue
+        values = np.array([entry(f)["value"] for f in fits])
+        errors = [entry(f).get("standard_error") for f in fits]
+        at_bound = sum(bool(entry(f).get("at_bound")) for f in fits)
+        independent = [f["fit"].get("standard_errors_independent", {}).get(name) for f in fits]
+        sd = float(np.std(values, ddof=1))
+
+        def rms(errors):
+            known = [e for e in errors if e is not None]
+            return math.sqrt(sum(e * e for e in known) / len(known)) if known else float("nan")
+
+        se, se_independent = rms(errors), rms(independent)
+        note = f" ({at_bound} at a bound)" if at_bound else ""
+        out.append(f"| {name}{note} | {np.mean(values):.4g} | {sd:.3g} | {se:.3g} | "
+                   f"{sd / se if se > 0 else float('nan'):.2f} | {se_independent:.3g} | "
+                   f"{sd / se_independent if se_independent > 0 else float('nan'):.2f} |")
+    # The DEM noise per specimen, beside the fits' errors.
+    specimens = sorted({os.path.basename(p)[:-3] for p in glob.glob(os.path.join(args.folder, "seed*", "*.h5"))
+                        if not p.endswith(".specimen.h5")})
+    out += ["", "| specimen | DEM noise q/p | fits' RMS q/p (mean) | DEM noise eps_v | "
+            "fits' RMS eps_v (mean) |", "|---|---|---|---|---|"]
+    for spec in specimens:
+        runs = [os.path.join(os.path.dirname(os.path.dirname(p)), spec + ".h5") for p in seeds]
+        runs = [r for r in runs if os.path.exists(r + ".done")]
+        if len(runs) < 2:
+            continue
+        series = [read_series(r) for r in runs]
+        pairs = list(itertools.combinations(series, 2))
+        noise = {k: math.sqrt(np.mean([pair_rms(a, b, k) ** 2 for a, b in pairs]) / 2)
+                 for k in ("eta", "volumetric_strain")}
+        errors = [e for f in fits for e in f.get("errors", []) if e["test"] == spec]
+        eta = np.mean([e["rms_eta"] for e in errors]) if errors else float("nan")
+        ev = np.mean([e["rms_volumetric"] for e in errors]) if errors else float("nan")
+        out.append(f"| {spec} | {noise['eta']:.3f} | {eta:.3f} | {noise['volumetric_strain']:.4f} | "
+                   f"{ev:.4f} |")
+    text = "\n".join(out)
+    print(text)
+    if args.markdown:
+        with open(args.markdown, "w") as f:
+            f.write(text + "\n")
+
+
+if __name__ == "__main__":
+    main()
