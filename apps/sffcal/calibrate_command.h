@@ -20,7 +20,7 @@ struct CalibrateCommandOptions {
   std::string loss = "none";     ///< none | huber | cauchy
   int max_points = 60;           ///< series rows per test in the fit
   /// Largest axial-strain increment of the fit's path (0: rows only); as FitOptions.
-  double max_strain_step = 0.001;
+  double max_strain_step = 5e-4;
   bool verbose = false;          ///< Ceres' own iteration table as well
   /// Threads over tests (results do not depend on it); 0: OpenMP's default (OMP_NUM_THREADS,
   /// else all cores).

@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
   calibrate->add_option("--max-strain-step", calibrate_options.max_strain_step,
                         "largest axial-strain increment of the fit's path, splitting longer gaps "
                         "between its rows (0: the rows only; the path error in q/p falls with its "
-                        "square, within 1e-3 of a converged path at 0.001)")
+                        "square, within 1e-3 of a converged path at the default)")
       ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   calibrate->add_flag("-v,--verbose", calibrate_options.verbose, "print the Ceres iterations");

@@ -572,8 +572,12 @@ void Calibration::fit_critical_state_line() {
 }
 
 void Calibration::bound_c_h() {
-  // c_h e_gamma < 1 (b0 > 0 over the void ratios the model can reach).
-  upper_[kCh] = std::min(upper_[kCh], 0.99 / x_[kEGamma]);
+  // b0 > 0 over the void ratios the model can reach: c_h e < 1 for e up to e_gamma and up to
+  // the largest void ratio of the tests (a loose specimen starts above e_gamma).
+  double e_max = x_[kEGamma];
+  for (const TestData& t : tests_)
+    for (double e : t.void_ratio) e_max = std::max(e_max, e);
+  upper_[kCh] = std::min(upper_[kCh], 0.99 / e_max);
   x_[kCh] = std::min(x_[kCh], upper_[kCh]);
   result_.estimates[kCh].upper = upper_[kCh];
 }
@@ -686,13 +690,18 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
   for (std::size_t j = 0; j < free.size(); ++j)
     set(free[j], r.x[free[j]], r.errors.empty() ? -1.0 : r.errors[j], to_string(stage),
         r.errors.empty() ? -1.0 : r.errors_independent[j]);
+  std::string held;  // the free parameters at a bound, held for the covariance
+  for (int i : r.held_for_covariance) held += std::string(held.empty() ? "" : ", ") + kNames[i];
+  const std::string prefix = std::string("stage ") + to_string(stage) + ": ";
   if (!r.errors.empty()) {
     result_.covariance_scale = r.scale;
     result_.mean_bandwidth = r.mean_bandwidth;
+    if (!held.empty()) result_.notes.push_back(prefix + "standard errors with " + held + " held (at a bound)");
+  } else if (r.held_for_covariance.size() == free.size()) {
+    result_.notes.push_back(prefix + "no standard errors (every free parameter at a bound: " + held + ")");
+  } else {
+    result_.notes.push_back(prefix + "covariance not available (rank deficient or too few residuals)");
   }
-  else
-    result_.notes.push_back(std::string("stage ") + to_string(stage) +
-                            ": covariance not available (rank deficient or too few residuals)");
 }
 
 void Calibration::fit_fabric() {

@@ -269,21 +269,50 @@ StageResult solve_stage_sized(const std::vector<TestData>& tests, const std::vec
       best.residuals = residuals;
       for (int j = 0; j < k; ++j) best.x[free[j]] = block[j];
       best.message = summary.BriefReport();
-      std::vector<double> errors, robust;
-      double scale = 0.0;
+      // The covariance at the solution, with the parameters that sit at a bound held (the
+      // active constraints: a parameter there has no symmetric uncertainty, and one at a bound
+      // can make the rest rank deficient, e.g. e_A when n_d = 0).
+      std::vector<int> interior, at_bound;
+      for (int j = 0; j < k; ++j) {
+        const double tol = 1e-4 * (upper[free[j]] - lower[free[j]]);
+        const bool bound = block[j] - lower[free[j]] <= tol || upper[free[j]] - block[j] <= tol;
+        (bound ? at_bound : interior).push_back(j);
+      }
       best.errors.clear();
       best.errors_independent.clear();
-      if (scaled_standard_errors(problem, block.data(), S, summary.final_cost, residuals, k,
+      best.held_for_covariance.clear();
+      for (int j : at_bound) best.held_for_covariance.push_back(free[j]);
+      const int m = static_cast<int>(interior.size());
+      if (m > 0 && !at_bound.empty()) {
+        std::vector<int> constant;
+        for (int j = 0; j < S; ++j)
+          if (std::find(interior.begin(), interior.end(), j) == interior.end())
+            constant.push_back(j);
+        problem.SetManifold(block.data(), new ceres::SubsetManifold(S, constant));
+      }
+      std::vector<double> errors, robust;
+      double scale = 0.0;
+      if (m > 0 &&
+          scaled_standard_errors(problem, block.data(), S, summary.final_cost, residuals, m,
                                  errors, &scale) &&
           evaluator.ensure(block.data(), true)) {
         std::vector<int> series;
         for (std::size_t t = 0; t < tests.size(); ++t)
           for (int length : residual_series(tests[t], grids[t], spec)) series.push_back(length);
-        if (autocorrelation_robust_standard_errors(evaluator.jacobian(), S, k,
-                                                   evaluator.residuals(), series, robust,
-                                                   &best.mean_bandwidth)) {
-          best.errors = robust;
-          best.errors_independent.assign(errors.begin(), errors.begin() + k);
+        // The Jacobian's columns of the interior parameters.
+        std::vector<double> jacobian(static_cast<std::size_t>(residuals) * m);
+        for (int i = 0; i < residuals; ++i)
+          for (int c = 0; c < m; ++c)
+            jacobian[static_cast<std::size_t>(i) * m + c] =
+                evaluator.jacobian()[static_cast<std::size_t>(i) * S + interior[c]];
+        if (autocorrelation_robust_standard_errors(jacobian.data(), m, m, evaluator.residuals(),
+                                                   series, robust, &best.mean_bandwidth)) {
+          best.errors.assign(static_cast<std::size_t>(k), -1.0);
+          best.errors_independent.assign(static_cast<std::size_t>(k), -1.0);
+          for (int c = 0; c < m; ++c) {
+            best.errors[interior[c]] = robust[c];
+            best.errors_independent[interior[c]] = errors[interior[c]];
+          }
           best.scale = scale;
         }
       }

@@ -22,6 +22,8 @@ struct StageResult {
   std::vector<double> errors, errors_independent;
   double scale = 0.0;           // s^2 of the independent errors
   double mean_bandwidth = 0.0;  // of the robust errors, in residuals
+  /// Free parameters (FitVector indices) at a bound, held for the covariance (errors -1).
+  std::vector<int> held_for_covariance;
   std::string message;
   StageTiming timing;          // summed over the starts
 };

@@ -77,7 +77,7 @@ inline constexpr std::array<ParameterField<T>, 15> kParameterFields = {{
     {"xi", &Parameters<T>::xi, "1", {0.0, detail::kUnbounded, false, false}, 0.1, 1.5},
     {"m", &Parameters<T>::m, "1", {0.0, detail::kUnbounded, false, false}, 0.001, 0.1},
     {"h0", &Parameters<T>::h0, "1", {0.0, detail::kUnbounded, false, false}, 0.05, 200.0},
-    {"c_h", &Parameters<T>::c_h, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 0.99},
+    {"c_h", &Parameters<T>::c_h, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 2.0},
     {"n_b", &Parameters<T>::n_b, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 10.0},
     {"A0", &Parameters<T>::A0, "1", {0.0, detail::kUnbounded, true, false}, 0.01, 10.0},
     {"n_d", &Parameters<T>::n_d, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 20.0},

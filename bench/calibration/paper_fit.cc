@@ -1,0 +1,56 @@
+// The calibration of the paper-size runs (docs/calibration.md, "Fit to paper-size runs") from
+// their committed reduced CSV pairs, bench/reference/<name>_series.csv and <name>_sff.csv (the
+// full run files are not committed; `sffcal calibrate` reads run files).
+//
+// usage: paper_fit FITTED... [--hold-out HELD...] [--threads N]
+//   e.g. build/bench/paper_fit dense_100kPa loose_200kPa --hold-out dense_300kPa
+// Prints the summary of `sffcal calibrate` (errors per test, parameters, stages).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "calibration/fit.h"
+#include "sffcal/constants.h"
+
+int main(int argc, char** argv) {
+  try {
+    std::vector<std::string> fitted, held;
+    int threads = 2;
+    bool holding = false;
+    for (int k = 1; k < argc; ++k) {
+      const std::string a = argv[k];
+      if (a == "--hold-out") {
+        holding = true;
+      } else if (a == "--threads" && k + 1 < argc) {
+        threads = std::atoi(argv[++k]);
+      } else {
+        (holding ? held : fitted).push_back(a);
+      }
+    }
+    if (fitted.empty()) {
+      std::fprintf(stderr, "usage: paper_fit FITTED... [--hold-out HELD...] [--threads N]\n");
+      return 2;
+    }
+    const std::string folder = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
+    const double friction = std::tan(sffcal::kPi / 6.0);  // the runs' shearing friction, tan 30 deg
+    auto read = [&](const std::vector<std::string>& names) {
+      std::vector<calibration::TestData> tests;
+      for (const std::string& n : names)
+        tests.push_back(calibration::read_csv_pair(folder + n + "_series.csv",
+                                                   folder + n + "_sff.csv", n, friction));
+      return tests;
+    };
+    calibration::FitOptions options;
+    options.threads = threads;
+    calibration::CalibrationResult result = calibration::calibrate(read(fitted), options);
+    calibration::predict(read(held), options, result);
+    std::printf("%s", calibration::summary_markdown(result).c_str());
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "paper_fit: %s\n", e.what());
+    return 1;
+  }
+}
