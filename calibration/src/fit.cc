@@ -36,11 +36,11 @@ constexpr int fit_index(std::string_view name) {
     if (std::string_view(kParameterFields<double>[k].name) == name) return static_cast<int>(k);
   return name == "a_cs" ? kAcsIndex : throw std::logic_error("no fit parameter of that name");
 }
-constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c"), kC = fit_index("c"),
-              kEGamma = fit_index("e_gamma"), kLambdaC = fit_index("lambda_c"),
-              kXi = fit_index("xi"), kH0 = fit_index("h0"), kCh = fit_index("c_h"),
-              kNb = fit_index("n_b"), kA0 = fit_index("A0"), kNd = fit_index("n_d"),
-              kEA = fit_index("e_A"), kKF = fit_index("k_F");
+constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c"),
+              kC = fit_index("c"), kEGamma = fit_index("e_gamma"),
+              kLambdaC = fit_index("lambda_c"), kXi = fit_index("xi"), kH0 = fit_index("h0"),
+              kCh = fit_index("c_h"), kNb = fit_index("n_b"), kA0 = fit_index("A0"),
+              kNd = fit_index("n_d"), kEA = fit_index("e_A"), kKF = fit_index("k_F");
 const std::array<const char*, kNumFitParameters> kNames = [] {
   std::array<const char*, kNumFitParameters> names{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
@@ -287,7 +287,7 @@ TestErrors test_errors(const TestData& t, const FitVector& x, const FitOptions& 
     sn += second * second;
     ++nn;
     ++e.rows;
-    if (t.p[i] < kLiquefiedMeanStress * t.p0) continue;  // q/p of a liquefied specimen: noise
+    if (liquefied_at_row(t, i)) continue;  // q/p of a liquefied specimen: noise
     const double de = c.eta[i] - t.eta[i];
     se += de * de;
     e.max_abs_eta = std::max(e.max_abs_eta, std::abs(de));
@@ -696,11 +696,14 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
   if (!r.errors.empty()) {
     result_.covariance_scale = r.scale;
     result_.mean_bandwidth = r.mean_bandwidth;
-    if (!held.empty()) result_.notes.push_back(prefix + "standard errors with " + held + " held (at a bound)");
+    if (!held.empty())
+      result_.notes.push_back(prefix + "standard errors with " + held + " held (at a bound)");
   } else if (r.held_for_covariance.size() == free.size()) {
-    result_.notes.push_back(prefix + "no standard errors (every free parameter at a bound: " + held + ")");
+    result_.notes.push_back(prefix + "no standard errors (every free parameter at a bound: " +
+                            held + ")");
   } else {
-    result_.notes.push_back(prefix + "covariance not available (rank deficient or too few residuals)");
+    result_.notes.push_back(prefix +
+                            "covariance not available (rank deficient or too few residuals)");
   }
 }
 

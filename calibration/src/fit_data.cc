@@ -101,7 +101,8 @@ TestPath parse_test_path(const std::string& name) {
     throw std::runtime_error("loading path true_triaxial: the calibration follows axisymmetric "
                              "paths only (x and y held alike), and true triaxial holds them apart");
   std::string known;
-  for (const auto& entry : kPathNames) known += std::string(known.empty() ? "" : ", ") + entry.second;
+  for (const auto& entry : kPathNames)
+    known += std::string(known.empty() ? "" : ", ") + entry.second;
   throw std::runtime_error("unknown loading path '" + name + "' (the calibration reads " + known +
                            ")");
 }

@@ -44,10 +44,12 @@ Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
     return static_cast<int>(it - grid.begin());
   };
   const int end = static_cast<int>(grid.size()) - 1;
-  auto liquefied = [&](int row) { return t.p[row] < kLiquefiedMeanStress * t.p0 ? 1 : 0; };
+  auto liquefied = [&](int row) {
+    return static_cast<char>(liquefied_at_row(t, static_cast<std::size_t>(row)) ? 1 : 0);
+  };
   for (int row : g.rows) {
     g.row_at.push_back(std::min(index_of(along(t.axial_strain[row])), end));
-    g.row_liquefied.push_back(static_cast<char>(liquefied(row)));
+    g.row_liquefied.push_back(liquefied(row));
   }
   for (double s : t.snapshot_axial_strain) {
     g.snapshot_at.push_back(along(s) <= last + 1e-7 ? std::min(index_of(along(s)), end) : -1);
@@ -55,7 +57,7 @@ Grid make_grid(const TestData& t, int max_points, double max_strain_step) {
     int nearest = 0;
     for (int row = 1; row < n; ++row)
       if (std::abs(t.axial_strain[row] - s) < std::abs(t.axial_strain[nearest] - s)) nearest = row;
-    g.snapshot_liquefied.push_back(static_cast<char>(liquefied(nearest)));
+    g.snapshot_liquefied.push_back(liquefied(nearest));
   }
   for (std::size_t k = 1; k < grid.size(); ++k) {
     PathStep step;

@@ -101,13 +101,13 @@ PathResult<T> axisymmetric_path(const Parameters<T>& par, const State<T>& initia
   result.strain.setZero();
   result.rows.push_back(make_record(par, initial, result.strain, UpdateStatus::kOk));
   double guess = 0.0;  // lateral strain per unit axial strain of the last increment
-  // One increment d_axial from (state, strain); false where it cannot be integrated.
   // The held combination of the stresses (Lateral::kStress or kMeanStress).
   const double w_r = lateral == Lateral::kMeanStress ? 2.0 / 3.0 : 1.0;
   const double w_z = lateral == Lateral::kMeanStress ? 1.0 / 3.0 : 0.0;
   auto held = [&](const auto& stress) {
     return w_r * 0.5 * (stress(0, 0) + stress(1, 1)) + w_z * stress(2, 2);
   };
+  // One increment d_axial from (state, strain); false where it cannot be integrated.
   auto advance = [&](State<T>& state, Tensor<T>& strain, double d_axial, double target,
                      UpdateStatus& worst) {
     if (lateral == Lateral::kVolume) {  // the strain is given: no unknown, no chain rule
@@ -264,7 +264,8 @@ void path_residuals(const TestData& t, const Grid& g, const ResidualSpec& spec, 
   if (spec.volumetric && is_undrained(t.path))
     for (std::size_t i = 1; i < rows; ++i) {
       const double p_dem = t.p[g.rows[i]];
-      r[k++] = (path.rows[g.row_at[i]].p - p_dem) / (spec.mean_stress_scale * std::max(t.p0, p_dem));
+      r[k++] = (path.rows[g.row_at[i]].p - p_dem) /
+               (spec.mean_stress_scale * std::max(t.p0, p_dem));
     }
   else if (spec.volumetric)
     for (std::size_t i = 1; i < rows; ++i)

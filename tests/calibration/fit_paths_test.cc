@@ -117,7 +117,8 @@ TEST(FitPaths, ParameterDerivativesThroughEachPathMatchCentredDifferences) {
     };
     for (int j = 0; j < 6; ++j) {
       const double h = 1e-5 * x[fit_parameter_index(names[j])];
-      const std::vector<double> plus = residuals_at(j, 1.0 + 1e-5), minus = residuals_at(j, 1.0 - 1e-5);
+      const std::vector<double> plus = residuals_at(j, 1.0 + 1e-5);
+      const std::vector<double> minus = residuals_at(j, 1.0 - 1e-5);
       // Relative to the largest derivative of this parameter over the residuals.
       double scale = 0.0, error = 0.0;
       for (int k = 0; k < n; ++k) scale = std::max(scale, std::abs(plus[k] - minus[k]) / (2 * h));

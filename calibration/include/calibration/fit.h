@@ -64,6 +64,11 @@ struct TestData {
   std::vector<double> snapshot_axial_strain, a_c, a_n, mobilisation, snapshot_eta;
 };
 
+/// Whether the DEM specimen of a test had liquefied at series row `row` (kLiquefiedMeanStress).
+inline bool liquefied_at_row(const TestData& test, std::size_t row) {
+  return test.p[row] < kLiquefiedMeanStress * test.p0;
+}
+
 /// Reads a run file: /series (axial_strain, eta, volumetric_strain, void_ratio, p) and the SFF
 /// table /analysis/sff (axial_strain, a_c, a_n, m, eta), the friction from the stored config,
 /// the loading path from /loading. Throws std::runtime_error naming the file and what is missing
