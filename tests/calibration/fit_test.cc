@@ -15,6 +15,7 @@
 #include <random>
 #include <string>
 
+#include "dem/loading_path.h"
 #include "dem/run_config.h"
 #include "runfile/run_file.h"
 #include "synthetic_test.h"
@@ -373,6 +374,12 @@ TEST(FitInputs, TheLoadingPathIsReadAndTrueTriaxialIsRefusedByName) {
                "axial_strain does not decrease at row 1 (path drained_extension)");
   std::filesystem::remove(path);
   expect_error([] { parse_test_path("sideways"); }, "unknown loading path 'sideways'");
+  // The spellings are the DEM's (the run file's /loading path): each DEM path is read back under
+  // its own name, or refused by it (true triaxial).
+  for (const std::string& name : dem::loading_path_names()) {
+    if (name == "true_triaxial") continue;
+    EXPECT_EQ(to_string(parse_test_path(name)), name);
+  }
 }
 
 TEST(FitInputs, MissingCsvColumnIsNamed) {
