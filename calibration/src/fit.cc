@@ -566,6 +566,19 @@ void Calibration::fit_critical_state_line() {
   }
   double eg, l, rss, se_e = -1.0, se_l = -1.0;
   line_fit(best_xi, eg, l, rss, &se_e, &se_l);
+  if (l < 0.0) {
+    // lambda_c >= 0 is active: the least-squares line with lambda_c = 0 is the mean void ratio.
+    // (Clamping lambda_c alone would keep the rising line's intercept, below every point.)
+    std::vector<double> e_cs;
+    for (const auto& c : points) e_cs.push_back(c.void_ratio);
+    result_.notes.push_back("critical state line: the critical void ratios rise with pressure "
+                            "(least-squares lambda_c = " + std::to_string(l) +
+                            "): lambda_c = 0 at its bound and e_gamma their mean");
+    eg = mean(e_cs);
+    se_e = standard_error_of_mean(e_cs);
+    l = 0.0;
+    se_l = -1.0;
+  }
   if (!user_fixed_[ig]) set(ig, eg, se_e, "csl");
   set(il, l, se_l, "csl");
   if (distinct >= 3 && !user_fixed_[ix]) set(ix, best_xi, -1.0, "csl");

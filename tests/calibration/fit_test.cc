@@ -394,6 +394,48 @@ TEST(FitInputs, MissingCsvColumnIsNamed) {
   std::filesystem::remove(sff);
 }
 
+// Three drained tests whose last window sits at (p_k, e_k): only the critical state line stage.
+CalibrationResult fit_critical_state_line(const double (&p)[3], const double (&e)[3]) {
+  const FitVector x = to_fit_vector(testing::toyoura(), 0.8);
+  std::vector<TestData> tests;
+  for (int k = 0; k < 3; ++k) {
+    TestData t = synthetic_test("t" + std::to_string(k), x, 0.75, 0.1, 0.0, 0);
+    std::fill(t.p.begin() + 1, t.p.end(), p[k]);
+    std::fill(t.void_ratio.begin() + 1, t.void_ratio.end(), e[k]);
+    tests.push_back(t);
+  }
+  FitOptions options;
+  options.stages = {Stage::kCsl};
+  options.starts = 1;
+  options.initial = x;
+  return calibrate(tests, options);
+}
+
+TEST(FitCriticalStateLine, AFallingLineIsFittedAndARisingOneGivesTheMeanAtLambdaZero) {
+  const int ig = fit_parameter_index("e_gamma"), il = fit_parameter_index("lambda_c"),
+            ix = fit_parameter_index("xi");
+  const double p[3] = {100e3, 200e3, 400e3};
+  // On the line e_c = 0.9 - 0.05 (p/p_a)^0.7: fitted back (xi by its 0.005 scan).
+  double e_line[3];
+  for (int k = 0; k < 3; ++k)
+    e_line[k] = 0.9 - 0.05 * std::pow(p[k] / kAtmosphericPressure, 0.7);
+  const CalibrationResult line = fit_critical_state_line(p, e_line);
+  EXPECT_NEAR(line.values[ix], 0.7, 1e-9);
+  EXPECT_NEAR(line.values[ig], 0.9, 1e-9);
+  EXPECT_NEAR(line.values[il], 0.05, 1e-9);
+  // Void ratios that rise with pressure (small DEM specimens far from a critical state): the
+  // least-squares line has lambda_c < 0, so lambda_c = 0 and e_gamma is the mean, not the
+  // intercept of the rising line (which lies below every point).
+  const double e_rising[3] = {0.75, 0.76, 0.78};
+  const CalibrationResult rising = fit_critical_state_line(p, e_rising);
+  EXPECT_EQ(rising.values[il], 0.0);
+  EXPECT_NEAR(rising.values[ig], (0.75 + 0.76 + 0.78) / 3.0, 1e-12);
+  bool noted = false;
+  for (const std::string& note : rising.notes)
+    noted = noted || note.find("rise with pressure") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 TEST(FitDem, DenseReferenceTestConvergesToItsCriticalStressRatio) {
   const std::string dir = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
   const TestData t = read_csv_pair(dir + "dense_100kPa_2000_series.csv",
