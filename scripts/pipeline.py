@@ -1,16 +1,17 @@
 #!/usr/bin/python3
-"""The main job, end to end: prepare specimens, shear them in drained triaxial compression, analyse
-them with SFF, calibrate the ACST model, run the deal.II element checks, write a report.
+"""The main job, end to end: prepare specimens (one or several packing seeds each), shear them on
+their loading paths, analyse them with SFF, average the seeds, calibrate the ACST model, run the
+deal.II element checks, write a report.
 
 usage: scripts/pipeline.py [--scene FILE | --matrix] [-o OUT] [--only STAGE[,STAGE] | --from STAGE]
                            [--force] [--sffcal PATH] [--jobs N]
 
-Stages, in order: prepare, triaxial, sff, calibrate, fe-check, report. Each declares the files it
+Stages, in order: prepare, triaxial, sff, mean, calibrate, fe-check, report. Each declares the files it
 reads and writes; one whose inputs are unchanged since its last run (and whose outputs exist) is
 skipped and says so. The scene (default examples/main_scene.toml; --matrix:
 examples/matrix_scene.toml, the paper-size matrix) names the specimens. Outputs under OUT
-(default out/main): configs/, specimens/, runs/, vtk/, sff/, calibrate/, fe_check/, logs/ and
-report/report.md (+ report.html). See docs/pipeline.md.
+(default out/main): configs/, specimens/, runs/, vtk/, sff/, mean/ (several seeds), calibrate/,
+fe_check/, logs/ and report/report.md (+ report.html). See docs/pipeline.md.
 """
 import argparse
 import os
@@ -22,7 +23,7 @@ from pipeline_tasks import Runner, StageFailed, Task
 from sffcal import matrix as specimen_matrix
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
-STAGES = ["prepare", "triaxial", "sff", "calibrate", "fe-check", "report"]
+STAGES = ["prepare", "triaxial", "sff", "mean", "calibrate", "fe-check", "report"]
 PY = sys.executable
 
 
@@ -40,7 +41,15 @@ def read_scene(path):
                                   f"(python/sffcal/matrix.py): {', '.join(known)}")
     if not scene.get("calibrate_on"):
         raise StageFailed(f"scene {path}: 'calibrate_on' must name at least one specimen")
-    if scene.get("matrix") and (scene.get("dem") or scene.get("seed", 1) != 1):
+    if "seed" in scene and "seeds" in scene:
+        raise StageFailed(f"scene {path}: give 'seed' (one) or 'seeds' (a list), not both")
+    scene["seeds"] = scene.get("seeds", [scene.get("seed", 1)])
+    seeds = scene["seeds"]
+    if not (isinstance(seeds, list) and seeds and all(isinstance(s, int) and s >= 0 for s in seeds)
+            and len(set(seeds)) == len(seeds)):
+        raise StageFailed(f"scene {path}: 'seeds' must be a list of distinct non-negative integers, "
+                          f"not {seeds!r}")
+    if scene.get("matrix") and (scene.get("dem") or seeds != [1]):
         raise StageFailed(f"scene {path}: a matrix scene takes run_matrix.sh's configs as they are "
                           "(seed 1, no [dem] keys)")
     scene["specimens"] = known if scene.get("matrix") else (
@@ -57,8 +66,23 @@ class Pipeline:
     def path(self, *parts):
         return os.path.join(self.out, *parts)
 
-    def run_file(self, name):
-        return self.path("runs", name + ".h5")
+    def stems(self, name):
+        """The file stems of a specimen's runs: its name with one seed, <name>_s<seed> with several."""
+        seeds = self.scene["seeds"]
+        return [name] if len(seeds) == 1 else [f"{name}_s{seed}" for seed in seeds]
+
+    def instances(self):
+        """(specimen, seed, stem) of every run of the scene."""
+        return [(n, seed, stem) for n in self.scene["specimens"]
+                for seed, stem in zip(self.scene["seeds"], self.stems(n))]
+
+    def run_file(self, stem):
+        return self.path("runs", stem + ".h5")
+
+    def test_file(self, name):
+        """The DEM test of a specimen that the fit and the checks read: its run with one seed, the
+        mean of its seeds' runs (mean/<name>.h5) with several."""
+        return self.run_file(name) if len(self.scene["seeds"]) == 1 else self.path("mean", name + ".h5")
 
     def write_configs(self):
         """The scene's specimen configs (sffcal.matrix) plus its [dem] keys (cheap, every start;
@@ -69,10 +93,9 @@ class Pipeline:
             template = f.read()
         specimens = dict(specimen_matrix.matrix())
         dem = self.scene.get("dem", {})
-        for name in self.scene["specimens"]:
+        for name, seed, stem in self.instances():
             text = specimen_matrix.specimen_config(template, name, specimens[name],
-                                                   bodies=self.scene.get("bodies", 400),
-                                                   seed=self.scene.get("seed", 1))
+                                                   bodies=self.scene.get("bodies", 400), seed=seed)
             # the keys of every specimen, then those of a [dem.<specimen>] table
             keys = [(k, v) for k, v in dem.items() if not isinstance(v, dict)] + \
                 list(dem.get(name, {}).items())
@@ -81,26 +104,30 @@ class Pipeline:
                     text = specimen_matrix.set_key(text, key, value)
                 except KeyError as e:  # the template has no such key
                     raise StageFailed(f"scene {self.args.scene}: [dem] {e.args[0]}")
-            with open(os.path.join(folder, name + ".toml"), "w") as f:
+            with open(os.path.join(folder, stem + ".toml"), "w") as f:
                 f.write(text)
 
     def tasks(self, stage):
         """The tasks of one stage: inputs, outputs and commands."""
         names = self.scene["specimens"]
-        runs = [self.run_file(n) for n in names]
-        fitted = [self.run_file(n) for n in self.scene["calibrate_on"]]
-        held = [self.run_file(n) for n in self.scene.get("held_back", [])]
+        stems = [stem for _, _, stem in self.instances()]
+        runs = [self.run_file(stem) for stem in stems]
+        several = len(self.scene["seeds"]) > 1
+        fitted = [self.test_file(n) for n in self.scene["calibrate_on"]]
+        held = [self.test_file(n) for n in self.scene.get("held_back", [])]
         # fe-check's element runs drained compression only; the calibration predicts the others
-        checked = [self.run_file(n) for n in self.scene["calibrate_on"] + self.scene.get("held_back", [])
+        checked = [self.test_file(n) for n in self.scene["calibrate_on"] + self.scene.get("held_back", [])
                    if specimen_matrix.loading_path(n) == "drained_compression"]
         made_by_triaxial = {r: "triaxial" for r in runs}
+        # the tests the fit and the checks read: the runs or the means of their seeds
+        made_by_test = {self.test_file(n): "mean" if several else "triaxial" for n in names}
         if stage == "prepare":
             if self.scene.get("matrix"):
                 return []  # run_matrix.sh prepares and shears in one `sffcal dem`
             self.write_configs()
             return [Task(stage, n, [self.path("configs", n + ".toml")], [self.path("specimens", n + ".h5")],
                          [[self.sffcal, "prepare", "-c", self.path("configs", n + ".toml"),
-                           "-o", self.path("specimens", n + ".h5"), "--force"]]) for n in names]
+                           "-o", self.path("specimens", n + ".h5"), "--force"]]) for n in stems]
         if stage == "triaxial":
             if self.scene.get("matrix"):
                 script = os.path.join(ROOT, "bench", "matrix", "run_matrix.sh")
@@ -111,7 +138,7 @@ class Pipeline:
                              options=str(self.scene["bodies"]))]
             self.write_configs()
             tasks = []
-            for n in names:
+            for n in stems:
                 config, specimen, run = self.path("configs", n + ".toml"), self.path("specimens", n + ".h5"), self.run_file(n)
                 vtk = self.path("vtk", n)
                 tasks.append(Task(stage, n, [config, specimen],
@@ -125,10 +152,22 @@ class Pipeline:
         if stage == "sff":
             sff = self.path("sff")
             return [Task(stage, "all", runs,
-                         [os.path.join(sff, n + ".h5.sff.csv") for n in names] + [os.path.join(sff, "anisotropy.png")],
+                         [os.path.join(sff, n + ".h5.sff.csv") for n in stems] + [os.path.join(sff, "anisotropy.png")],
                          [[self.sffcal, "sff", *runs, "-o", sff],
                           [PY, os.path.join(ROOT, "scripts", "plot_sff.py"), *runs, "-o", sff]],
                          made_by=made_by_triaxial)]
+        if stage == "mean":
+            if not several:
+                return []  # one seed: the fit and the checks read the runs themselves
+            tasks = []
+            for n in names:
+                seed_runs = [self.run_file(stem) for stem in self.stems(n)]
+                mean = self.test_file(n)
+                tasks.append(Task(stage, n, seed_runs, [mean, mean[:-3] + ".noise.json"],
+                                  [[PY, os.path.join(ROOT, "scripts", "mean_of_seeds.py"), *seed_runs,
+                                    "-o", mean, "--force"]],
+                                  made_by={r: "triaxial" for r in seed_runs}))
+            return tasks
         if stage == "calibrate":
             fit = self.path("calibrate")
             hold_out = ["--hold-out", *held] if held else []
@@ -137,7 +176,7 @@ class Pipeline:
                          [[self.sffcal, "calibrate", *fitted, *hold_out, "-o", fit,
                            *self.scene.get("calibrate", {}).get("options", [])],
                           [PY, os.path.join(ROOT, "scripts", "plot_calibration.py"), fit]],
-                         made_by=made_by_triaxial)]
+                         made_by=made_by_test)]
         if stage == "fe-check":
             params, check = self.path("calibrate", "parameters.json"), self.path("fe_check")
             dem = [a for r in checked for a in ("--dem", r)]
@@ -147,10 +186,11 @@ class Pipeline:
                            *self.scene.get("fe_check", {}).get("options", [])],
                           [PY, os.path.join(ROOT, "scripts", "plot_fe_check.py"), check]],
                          check_codes=(1, 2),  # 2: FE vs DEM off; 1: also a verification check or a run
-                         made_by={params: "calibrate", **made_by_triaxial})]
+                         made_by={params: "calibrate", **made_by_test})]
         if stage == "report":
             # whatever the earlier stages left: the report covers what exists
-            inputs = [p for p in [self.args.scene] + runs
+            noise = [self.test_file(n)[:-3] + ".noise.json" for n in names] if several else []
+            inputs = [p for p in [self.args.scene] + runs + noise
                       + [self.path("calibrate", "summary.md"), self.path("fe_check", "summary.csv")]
                       + [self.path(".records", s, "_stage.json") for s in STAGES[:-1]] if os.path.exists(p)]
             return [Task(stage, "report", inputs,

@@ -23,7 +23,7 @@ import numpy as np
 from sffcal import runfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-STAGES = ["prepare", "triaxial", "sff", "calibrate", "fe-check"]
+STAGES = ["prepare", "triaxial", "sff", "mean", "calibrate", "fe-check"]
 
 
 class Page:
@@ -104,6 +104,38 @@ def run_status(log):
 # --dem-ev-tol) for q/p and eps_v; for p/p0 of an undrained test ours (issue 19 gives none).
 TOLERANCES = {"rms_eta": ("q/p (RMS)", 0.1), "rms_volumetric": ("eps_v (RMS)", 0.01),
               "rms_p_ratio": ("p/p0 (RMS)", 0.1)}
+# The quantity of each check label in the noise files of the mean stage (scripts/mean_of_seeds.py).
+NOISE_OF = {"q/p (RMS)": "eta", "eps_v (RMS)": "volumetric_strain", "p/p0 (RMS)": "p_ratio"}
+
+
+def specimen_of(stem):
+    """The specimen of a run: its file stem without the seed suffix _s<seed> of a scene with
+    several seeds (scripts/pipeline.py)."""
+    return re.sub(r"_s\d+$", "", stem)
+
+
+def read_noise(out):
+    """The mean stage's noise records, by specimen: {"seeds", "runs", "noise": {quantity: value}}."""
+    records = {}
+    for path in sorted(glob.glob(os.path.join(out, "mean", "*.noise.json"))):
+        with open(path) as f:
+            records[os.path.basename(path)[: -len(".noise.json")]] = json.load(f)
+    return records
+
+
+def with_noise(rows, noise):
+    """The check rows with the DEM's noise beside the error: one seed's, and the mean's (the
+    checks compare with the mean of the seeds, which scatters by noise/sqrt(K))."""
+    out = []
+    for test, role, through, quantity, value, tolerance, result in rows:
+        record = noise.get(test)
+        if record and NOISE_OF.get(quantity) in record["noise"]:
+            one = record["noise"][NOISE_OF[quantity]]
+            cells = [f"{one:.4f}", f"{one / np.sqrt(len(record['seeds'])):.4f}"]
+        else:
+            cells = ["-", "-"]
+        out.append((test, role, through, quantity, value, *cells, tolerance, result))
+    return out
 
 
 def checks(out, fitted, held):
@@ -153,16 +185,25 @@ def write_markdown(out, scene_path):
              f"{datetime.datetime.now().isoformat(timespec='seconds')} on {os.cpu_count()} cores. "
              "Made by `scripts/pipeline.py` (docs/pipeline.md); units SI, compression positive.")
 
-    rows = checks(out, fitted, held)
+    noise = read_noise(out)
+    rows = with_noise(checks(out, fitted, held), noise)
     failed = [r for r in rows if r[-1] != "pass"]
+    seeds = scene.get("seeds", [scene.get("seed", 1)])
+    against = (f"the mean of {len(seeds)} seeds of each specimen (seeds {', '.join(map(str, seeds))}; "
+               "`mean/<specimen>.h5`)" if noise else "one run of each specimen")
     page.add("## Checks",
              f"The calibrated model against every DEM test it was fitted to or that was held back from "
              f"the fit (held back: {', '.join(held) or 'none'}; predicted, not fitted). Drained "
              "compression through the deal.II element (`sffcal fe-check`), the other loading paths "
              "through the model's driver on the test's own path (`sffcal calibrate`, docs/calibration.md). "
-             "Tolerances: fe-check's for q/p and ε_v; 0.1 for p/p0 of an undrained test (ours).")
+             "Tolerances: fe-check's for q/p and ε_v; 0.1 for p/p0 of an undrained test (ours). "
+             f"The DEM test is {against}. Beside each error the DEM's own noise: how far one run lies "
+             "from another of the same specimen (the RMS difference of two seeds / √2), and the scatter "
+             "of the mean the check compares with (that / √(seeds)); a model cannot be asked to come "
+             "much closer than the latter.")
     if rows:
-        page.table(["test", "role", "through", "quantity", "value", "tolerance", "result"],
+        page.table(["test", "role", "through", "quantity", "value", "DEM noise (one seed)",
+                    "DEM noise (mean)", "tolerance", "result"],
                    [[f"**{c}**" if c == "fail" else c for c in row] for row in rows])
         page.add(f"**{len(failed)} of {len(rows)} checks failed.**" if failed else
                  f"All {len(rows)} checks passed.")
@@ -185,8 +226,20 @@ def write_markdown(out, scene_path):
              "|ε_a|; ε_v compression positive; how the run ended and the worst lateral-stress error "
              "|σ_lateral − σ3|/σ3 at the output rows are the DEM's own (/summary); I = the largest inertial "
              "number (quasi-static below 1e-3).")
+    if noise:
+        page.add("## Seeds and the DEM's noise",
+                 "Each specimen was prepared and sheared with every seed of the scene; the fit and the "
+                 "checks read the mean of its runs (`scripts/mean_of_seeds.py`: the series interpolated "
+                 "onto the first seed's rows up to the strain all reached, the SFF tables snapshot by "
+                 "snapshot). Noise: the RMS over those rows of the standard deviation across the seeds "
+                 "(two seeds: RMS difference / √2).")
+        page.table(["specimen", "seeds", "noise q/p", "noise ε_v", "noise p/p0"],
+                   [(name, ", ".join(map(str, r["seeds"])), f"{r['noise']['eta']:.4f}",
+                     f"{r['noise']['volumetric_strain']:.4f}", f"{r['noise']['p_ratio']:.4f}")
+                    for name, r in noise.items()])
+
     if runs:
-        rows = [run_row(r, role.get(os.path.basename(r)[:-3], "analysed only")) for r in runs]
+        rows = [run_row(r, role.get(specimen_of(runfile.name_of(r)), "analysed only")) for r in runs]
         page.table(["specimen", "role", "path", "clumps", "σ3 [kPa]", "e0", "peak q/p", "end q/p", "end e",
                     "end ε_v [%]", "end ε_a [%]", "ended", "servo error [%]", "max I", "min q/p"], rows)
         unstable = [row[0] for row in rows if float(row[-1]) < -0.05 and "extension" not in row[2]]
@@ -196,7 +249,7 @@ def write_markdown(out, scene_path):
                      "friction changes from its compaction value to the shearing value; its first strain "
                      "increments are a collapse (see ε_v), not a quasi-static drained path.")
         overview = os.path.join(out, "report", "triaxial_all.png")
-        solid = [r for r in runs if os.path.basename(r)[:-3] not in held]
+        solid = [r for r in runs if specimen_of(runfile.name_of(r)) not in held]
         subprocess.run([sys.executable, os.path.join(HERE, "plot_runs.py"), *solid, "-o", overview,
                         "--held-back", *[r for r in runs if r not in solid]], check=True)
         page.add("![q/p, volumetric strain and void ratio of every specimen](triaxial_all.png)",

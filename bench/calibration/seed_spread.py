@@ -9,33 +9,19 @@ OUT/seed<S>/fit/parameters.json (one calibration per seed). Prints, as Markdown:
   root-mean-square of the standard errors the fits reported (robust to correlated residuals, and
   as if the residuals were independent), and the ratios;
 - per specimen: the DEM's noise, the RMS difference of q/p and of eps_v between two seeds of the
-  same specimen divided by sqrt(2) (RMS over all pairs, on the common strain range, series
-  interpolated linearly onto the first seed's rows), beside the fits' RMS errors of that specimen.
+  same specimen divided by sqrt(2) (python/sffcal/seeds.py, noise: over all pairs, on the common
+  strain range), beside the fits' RMS errors of that specimen.
 """
 import argparse
 import glob
-import itertools
 import json
 import math
 import os
 import sys
 
-import h5py
 import numpy as np
 
-
-def read_series(path):
-    with h5py.File(path, "r") as f:
-        s = f["series"]
-        return {k: s[k][:] for k in ("axial_strain", "eta", "volumetric_strain")}
-
-
-def pair_rms(a, b, key):
-    """RMS of a[key] - b[key] over the strain range both cover (b interpolated onto a's rows)."""
-    top = min(a["axial_strain"][-1], b["axial_strain"][-1])
-    rows = a["axial_strain"] <= top
-    other = np.interp(a["axial_strain"][rows], b["axial_strain"], b[key])
-    return float(np.sqrt(np.mean((a[key][rows] - other) ** 2)))
+from sffcal.seeds import noise as seeds_noise
 
 
 def main():
@@ -84,10 +70,7 @@ def main():
         runs = [r for r in runs if os.path.exists(r + ".done")]
         if len(runs) < 2:
             continue
-        series = [read_series(r) for r in runs]
-        pairs = list(itertools.combinations(series, 2))
-        noise = {k: math.sqrt(np.mean([pair_rms(a, b, k) ** 2 for a, b in pairs]) / 2)
-                 for k in ("eta", "volumetric_strain")}
+        noise = seeds_noise(runs)
         errors = [e for f in fits for e in f.get("errors", []) if e["test"] == spec]
         eta = np.mean([e["rms_eta"] for e in errors]) if errors else float("nan")
         ev = np.mean([e["rms_volumetric"] for e in errors]) if errors else float("nan")

@@ -16,25 +16,7 @@ import sys
 
 import h5py
 
-
-def reduce(source, target):
-    with h5py.File(source, "r") as src, h5py.File(target, "w") as dst:
-        for key, value in src.attrs.items():
-            dst.attrs[key] = value
-        for group in ("physics", "loading", "summary", "analysis"):
-            if group in src:  # schema 1 has none of /physics, /loading, /summary
-                src.copy(src[group], dst, group)
-        # The series compressed: a run file's series chunks are not (they are appended to while
-        # the run may be killed, docs/run-file.md); a reduced file is written once.
-        series = dst.create_group("series")
-        for key, value in src["series"].attrs.items():
-            series.attrs[key] = value
-        for name, column in src["series"].items():
-            series.create_dataset(name, data=column[()], maxshape=(None,), chunks=True,
-                                  shuffle=True, compression="gzip", compression_opts=4)
-        dst.attrs["note:reduction"] = (f"reduced by bench/matrix/reduce_matrix.py from {os.path.basename(source)}: "
-                                       f"/series and /analysis kept; {len(src['snapshots'])} snapshots and "
-                                       "the checkpoint left out")
+from sffcal.reduce import reduce
 
 
 def main():
@@ -51,7 +33,7 @@ def main():
                 print(f"skipped {path}: no /analysis/sff (run `sffcal sff` on it)", file=sys.stderr)
                 continue
         target = os.path.join(args.out, os.path.basename(path))
-        reduce(path, target)
+        reduce(path, target, "bench/matrix/reduce_matrix.py")
         done += 1
         print(f"{target}: {os.path.getsize(target) / 1024:.0f} KiB")
     print(f"{done} of {len(runs)} runs reduced")

@@ -4,6 +4,9 @@
   with the names of the C++ runfile library, and the CSV tables the commands write;
 - matrix: the specimens of the reference test matrix and the config writer behind
   bench/matrix/make_configs.py and the pipeline;
+- reduce: a reduced copy of a run file (no snapshots, no checkpoint);
+- seeds: the mean of several seeds of one specimen as a reduced run file, and the DEM's noise
+  between them (the main job's mean stage, bench/calibration/);
 - sff_table: the Markdown table of SFF results of several runs;
 - sff_plots: drawings shared by several scripts (the SFF decomposition of q/p).
 

@@ -1,0 +1,92 @@
+"""Several seeds of one specimen (the same config but for the packing seed): their mean curves as
+a reduced run file, and the DEM's own noise, the scatter between seeds (issue 19: the RMS
+difference between two seeds of the same specimen divided by sqrt(2)). Used by the main job's
+`mean` stage (scripts/pipeline.py) and by bench/calibration/."""
+import os
+
+import h5py
+import numpy as np
+
+from sffcal.reduce import reduce
+
+# The noise is measured on these: q/p, the volumetric strain and p/p0 (undrained tests).
+NOISE_KEYS = ("eta", "volumetric_strain", "p_ratio")
+
+
+def _common_rows(strains):
+    """The first run's rows up to the smallest final |axial strain| of all runs (extension: ε_a < 0)."""
+    top = min(abs(s[-1]) for s in strains)
+    return np.abs(strains[0]) <= top + 1e-12
+
+
+def _on_first_rows(strains, columns):
+    """Each run's column interpolated linearly in |axial strain| onto the first run's common rows:
+    an array (runs x rows)."""
+    rows = _common_rows(strains)
+    x = np.abs(strains[0][rows])
+    return np.array([np.interp(x, np.abs(s), c) for s, c in zip(strains, columns)])
+
+
+def noise(runs):
+    """The DEM's noise over the seeds `runs` (run files, at least two), per quantity of NOISE_KEYS:
+    the root mean square over the common rows of the sample standard deviation across the seeds.
+    For two seeds that is RMS(a - b)/sqrt(2); for more, the same as the mean of (a - b)^2/2 over all
+    pairs. The mean of K seeds scatters by noise/sqrt(K)."""
+    if len(runs) < 2:
+        raise ValueError("the noise needs at least two seeds")
+    strains, columns = [], {k: [] for k in NOISE_KEYS}
+    for path in runs:
+        with h5py.File(path, "r") as f:
+            s = f["series"]
+            strains.append(s["axial_strain"][()])
+            columns["eta"].append(s["eta"][()])
+            columns["volumetric_strain"].append(s["volumetric_strain"][()])
+            p = s["p"][()]
+            columns["p_ratio"].append(p / p[0])
+    return {k: float(np.sqrt(np.mean(np.var(_on_first_rows(strains, columns[k]), axis=0, ddof=1))))
+            for k in NOISE_KEYS}
+
+
+def mean_run_file(runs, target, by):
+    """Writes `target`: the first run reduced (sffcal.reduce), then /series replaced by the mean
+    over the runs, each interpolated linearly in |axial strain| onto the first run's rows up to the
+    smallest final strain of all runs, and /analysis/sff by the mean over the runs snapshot by
+    snapshot (the snapshots are at the same nominal strains; as many as the run with the fewest).
+    Integer columns (steps, snapshot numbers) are the first run's. The root note `note:mean_of`
+    names the runs and their seeds (`by`: the program). `sffcal calibrate` and `sffcal fe-check`
+    read the file as they read a run file."""
+    reduce(runs[0], target, by)
+    files = [h5py.File(r, "r") for r in runs]
+    try:
+        strains = [f["series/axial_strain"][()] for f in files]
+        rows = _common_rows(strains)
+        n_snapshots = min(len(f["analysis/sff/axial_strain"]) for f in files)
+        with h5py.File(target, "r+") as out:
+            for name, column in out["series"].items():
+                first = files[0]["series"][name][()]
+                column.resize((int(rows.sum()),))
+                if np.issubdtype(first.dtype, np.floating):
+                    column[...] = _on_first_rows(strains, [f["series"][name][()] for f in files]).mean(axis=0)
+                else:
+                    column[...] = first[rows]
+            sff = out["analysis/sff"]
+            for name in list(sff.keys()):
+                first = files[0]["analysis/sff"][name][()]
+                if first.ndim != 1:
+                    del sff[name]  # a table of other shape (none today) is not averaged
+                    continue
+                if np.issubdtype(first.dtype, np.floating):
+                    data = np.mean([f["analysis/sff"][name][()][:n_snapshots] for f in files], axis=0)
+                else:
+                    data = first[:n_snapshots]
+                attrs = dict(sff[name].attrs)
+                del sff[name]
+                sff.create_dataset(name, data=data)
+                for key, value in attrs.items():
+                    sff[name].attrs[key] = value
+            seeds = [int(f.attrs.get("seed", 0)) for f in files]
+            out.attrs["note:mean_of"] = (f"mean of {len(runs)} runs (seeds {', '.join(map(str, seeds))}) "
+                                         f"by {by}: " + ", ".join(os.path.basename(r) for r in runs))
+    finally:
+        for f in files:
+            f.close()

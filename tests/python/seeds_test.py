@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""python/sffcal/seeds.py on run files whose series are known: the mean of two seeds and the
+DEM's noise between them (issue 19: RMS(a - b)/sqrt(2)), on rows and strains that differ.
+
+usage: seeds_test.py  (exit 0 when every check holds; run by ctest)
+"""
+import os
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from sffcal import seeds  # noqa: E402
+
+FAILURES = []
+
+
+def check(condition, text):
+    if not condition:
+        FAILURES.append(text)
+        print("FAIL", text)
+
+
+def write_run(path, seed, strain, eta, eps_v, p, snapshot_strain, a_c, sign=1.0):
+    with h5py.File(path, "w") as f:
+        f.attrs["seed"] = seed
+        s = f.create_group("series")
+        for name, values in (("axial_strain", sign * strain), ("eta", eta), ("volumetric_strain", eps_v),
+                             ("p", p), ("step", np.arange(len(strain)) * 10)):
+            s.create_dataset(name, data=values, maxshape=(None,), chunks=True)
+        sff = f.create_group("analysis/sff")
+        sff.create_dataset("axial_strain", data=sign * snapshot_strain)
+        sff.create_dataset("a_c", data=a_c)
+        sff.create_dataset("snapshot", data=np.arange(len(snapshot_strain)))
+
+
+def case(folder, sign):
+    # Seed A on 101 rows to 0.25, seed B on 81 rows to 0.20 (it ended earlier): linear curves, so
+    # interpolation is exact and the mean and noise are known in closed form on A's rows <= 0.20.
+    a_strain, b_strain = np.linspace(0, 0.25, 101), np.linspace(0, 0.20, 81)
+    a = os.path.join(folder, f"a{sign:+.0f}.h5")
+    b = os.path.join(folder, f"b{sign:+.0f}.h5")
+    write_run(a, 1, a_strain, 1.0 + 2.0 * a_strain, 0.1 * a_strain, 1e5 * (1 + a_strain),
+              np.array([0.0, 0.1, 0.2]), np.array([0.1, 0.5, 0.8]), sign)
+    write_run(b, 2, b_strain, 1.0 + 2.0 * b_strain + 0.04, -0.1 * b_strain, 2e5 * (1 + 3 * b_strain),
+              np.array([0.0, 0.1]), np.array([0.3, 0.7]), sign)
+    noise = seeds.noise([a, b])
+    rows = a_strain <= 0.20 + 1e-12
+    x = a_strain[rows]
+    check(abs(noise["eta"] - 0.04 / np.sqrt(2)) < 1e-12, f"sign {sign}: q/p noise {noise['eta']}")
+    expected_v = np.sqrt(np.mean((0.2 * x) ** 2)) / np.sqrt(2)
+    check(abs(noise["volumetric_strain"] - expected_v) < 1e-12,
+          f"sign {sign}: eps_v noise {noise['volumetric_strain']} against {expected_v}")
+    expected_p = np.sqrt(np.mean((2 * x) ** 2)) / np.sqrt(2)  # p/p0: 1 + x against 1 + 3x
+    check(abs(noise["p_ratio"] - expected_p) < 1e-12, f"sign {sign}: p/p0 noise {noise['p_ratio']}")
+    target = os.path.join(folder, f"mean{sign:+.0f}.h5")
+    seeds.mean_run_file([a, b], target, "seeds_test.py")
+    with h5py.File(target, "r") as f:
+        s = f["series"]
+        check(len(s["axial_strain"]) == rows.sum(), f"sign {sign}: {len(s['axial_strain'])} rows")
+        check(np.allclose(s["eta"][()], 1.02 + 2.0 * x, atol=1e-12), f"sign {sign}: mean q/p")
+        check(np.allclose(s["volumetric_strain"][()], 0.0, atol=1e-15), f"sign {sign}: mean eps_v")
+        check(np.array_equal(s["step"][()], np.arange(rows.sum()) * 10), f"sign {sign}: integer column")
+        sff = f["analysis/sff"]
+        check(np.allclose(sff["a_c"][()], [0.2, 0.6]), f"sign {sign}: mean a_c {sff['a_c'][()]}")
+        check("seeds 1, 2" in f.attrs["note:mean_of"], f"sign {sign}: note {f.attrs['note:mean_of']}")
+    try:
+        seeds.noise([a])
+        check(False, "one seed: no error")
+    except ValueError:
+        pass
+
+
+def main():
+    with tempfile.TemporaryDirectory() as folder:
+        case(folder, 1.0)   # compression
+        case(folder, -1.0)  # extension: eps_a < 0
+    if FAILURES:
+        print(f"{len(FAILURES)} check(s) failed")
+        return 1
+    print("all checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
