@@ -211,6 +211,18 @@ def write_markdown(out, scene_path):
     else:
         page.add("*No checks yet (stages calibrate and fe-check).*")
 
+    if noise:
+        page.add("## Seeds and the DEM's noise",
+                 "Each specimen was prepared and sheared with every seed of the scene; the fit and the "
+                 "checks read the mean of its runs (`scripts/mean_of_seeds.py`: the series interpolated "
+                 "onto the first seed's rows up to the strain all reached, the SFF tables snapshot by "
+                 "snapshot). Noise: the RMS over those rows of the standard deviation across the seeds "
+                 "(two seeds: RMS difference / √2).")
+        page.table(["specimen", "seeds", "noise q/p", "noise ε_v", "noise p/p0"],
+                   [(name, ", ".join(map(str, r["seeds"])), f"{r['noise']['eta']:.4f}",
+                     f"{r['noise']['volumetric_strain']:.4f}", f"{r['noise']['p_ratio']:.4f}")
+                    for name, r in noise.items()])
+
     page.add("## Timing of the stages",
              "Wall-clock seconds of each stage's last run (a skipped stage keeps the time of the run "
              "that made its outputs); tasks of one stage run in parallel, so their times overlap.")
@@ -226,18 +238,6 @@ def write_markdown(out, scene_path):
              "|ε_a|; ε_v compression positive; how the run ended and the worst lateral-stress error "
              "|σ_lateral − σ3|/σ3 at the output rows are the DEM's own (/summary); I = the largest inertial "
              "number (quasi-static below 1e-3).")
-    if noise:
-        page.add("## Seeds and the DEM's noise",
-                 "Each specimen was prepared and sheared with every seed of the scene; the fit and the "
-                 "checks read the mean of its runs (`scripts/mean_of_seeds.py`: the series interpolated "
-                 "onto the first seed's rows up to the strain all reached, the SFF tables snapshot by "
-                 "snapshot). Noise: the RMS over those rows of the standard deviation across the seeds "
-                 "(two seeds: RMS difference / √2).")
-        page.table(["specimen", "seeds", "noise q/p", "noise ε_v", "noise p/p0"],
-                   [(name, ", ".join(map(str, r["seeds"])), f"{r['noise']['eta']:.4f}",
-                     f"{r['noise']['volumetric_strain']:.4f}", f"{r['noise']['p_ratio']:.4f}")
-                    for name, r in noise.items()])
-
     if runs:
         rows = [run_row(r, role.get(specimen_of(runfile.name_of(r)), "analysed only")) for r in runs]
         page.table(["specimen", "role", "path", "clumps", "σ3 [kPa]", "e0", "peak q/p", "end q/p", "end e",
