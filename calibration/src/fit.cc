@@ -372,15 +372,24 @@ SffRelationFit fit_sff_relation(const std::vector<TestData>& tests) {
 
 namespace {
 
+// |strain| (the rule of sffcal::final_window_start: the strain grows along the test; extension
+// runs to negative axial strain).
+std::vector<double> magnitudes(const std::vector<double>& strain) {
+  std::vector<double> m(strain.size());
+  std::transform(strain.begin(), strain.end(), m.begin(), [](double x) { return std::abs(x); });
+  return m;
+}
+
 // The critical state of each test: means of p, e and q/p over the final critical_window of axial
-// strain (sffcal::final_window_start), and of a_c over the snapshots in the same window.
+// strain (sffcal::final_window_start on |strain|), and of a_c over the snapshots in the same window.
 std::vector<CriticalStatePoint> measure_critical_states(const std::vector<TestData>& tests,
                                                         double window) {
   std::vector<CriticalStatePoint> points;
   for (const TestData& t : tests) {
     CriticalStatePoint c;
     c.test = t.name;
-    const std::size_t from = sffcal::final_window_start(t.axial_strain, window);
+    const std::vector<double> strain = magnitudes(t.axial_strain);
+    const std::size_t from = sffcal::final_window_start(strain, window);
     std::vector<double> p, e, eta, a;
     for (std::size_t k = from; k < t.axial_strain.size(); ++k) {
       p.push_back(t.p[k]);
@@ -388,8 +397,8 @@ std::vector<CriticalStatePoint> measure_critical_states(const std::vector<TestDa
       eta.push_back(t.eta[k]);
     }
     // The snapshots within the same window (of the series' last strain).
-    for (std::size_t k = sffcal::final_window_start(t.snapshot_axial_strain, t.axial_strain.back(),
-                                                    window);
+    for (std::size_t k = sffcal::final_window_start(magnitudes(t.snapshot_axial_strain),
+                                                    strain.back(), window);
          k < t.a_c.size(); ++k)
       a.push_back(t.a_c[k]);
     if (a.empty()) a.push_back(t.a_c.back());

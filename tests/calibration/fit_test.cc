@@ -436,6 +436,38 @@ TEST(FitCriticalStateLine, AFallingLineIsFittedAndARisingOneGivesTheMeanAtLambda
   EXPECT_TRUE(noted);
 }
 
+TEST(FitCriticalStateLine, AnExtensionTestsCriticalStateIsItsLastWindowOfStrain) {
+  // Extension runs to negative axial strain: the window is the last critical_window of |eps_a|,
+  // as in compression (it was the whole test, the strain "growing" towards its first row).
+  const FitVector x = to_fit_vector(testing::toyoura(), 0.8);
+  std::vector<TestData> tests = {
+      synthetic_test("compression", x, 0.75, 0.1, 0.0, 0),
+      synthetic_test("extension", x, 0.75, 0.1, 0.0, 0, TestPath::kDrainedExtension)};
+  FitOptions options;
+  options.stages = {Stage::kCsl};
+  options.starts = 1;
+  options.initial = x;
+  const CalibrationResult r = calibrate(tests, options);
+  ASSERT_EQ(r.critical_states.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const TestData& t = tests[k];
+    double eta = 0.0, e = 0.0;
+    int rows = 0;
+    for (std::size_t i = 0; i < t.axial_strain.size(); ++i)
+      if (std::abs(t.axial_strain.back()) - std::abs(t.axial_strain[i]) <= options.critical_window) {
+        eta += t.eta[i];
+        e += t.void_ratio[i];
+        ++rows;
+      }
+    EXPECT_EQ(rows, 21) << t.name;  // 0.1 of the 0.2 path: rows 20..40
+    EXPECT_NEAR(r.critical_states[k].eta, eta / rows, 1e-12) << t.name;
+    EXPECT_NEAR(r.critical_states[k].void_ratio, e / rows, 1e-12) << t.name;
+  }
+  // c = M_e / M_c from the two windows' q/p.
+  EXPECT_NEAR(r.values[fit_parameter_index("c")],
+              std::abs(r.critical_states[1].eta) / r.critical_states[0].eta, 1e-12);
+}
+
 TEST(FitDem, DenseReferenceTestConvergesToItsCriticalStressRatio) {
   const std::string dir = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
   const TestData t = read_csv_pair(dir + "dense_100kPa_2000_series.csv",
