@@ -5,8 +5,8 @@ usage: sff_table.py RUN.h5|RUN.sff.csv [...]
 
 Reads each run's SFF table (/analysis/sff of a run file, or the <run>.sff.csv that `sffcal sff`
 writes) and prints: e0, the peak and last stress ratio with a_c, a_n, m, the last void ratio, the worst SFF stress
-error, the worst |eta_SFF - eta| / eta (eta > 0.3) and the worst particle-form-vs-wall stress
-difference.
+error, the worst |eta_SFF - eta| / |eta| (|eta| > 0.3) and the worst particle-form-vs-wall stress
+difference (the peak: the largest |eta|, an extension test's most negative).
 """
 import sys
 
