@@ -40,7 +40,7 @@ def plot_eta(run, sff, mu, path):
 
 def plot_rose(run, sff, rose, path):
     snapshots = rose["snapshot"].astype(int)
-    peak = int(sff["snapshot"][np.argmax(sff["eta"])])
+    peak = int(sff["snapshot"][np.argmax(np.abs(sff["eta"]))])  # extension: the most negative
     chosen = [("initial", int(sff["snapshot"][0])), ("peak", peak), ("last", int(sff["snapshot"][-1]))]
     fig, axes = plt.subplots(2, 3, subplot_kw={"projection": "polar"}, figsize=(10, 6.5))
     for column, (label, k) in enumerate(chosen):

@@ -15,14 +15,17 @@ namespace sffcal {
 namespace {
 
 // Peak and last-snapshot values, and the worst errors, of one analysed run (sheared at `friction`).
+// The peak is the largest |eta| (an extension run's stress ratio is negative).
 void print_summary(const std::vector<sff::SnapshotAnalysis>& all, const std::vector<double>& strains,
                    double friction) {
   std::size_t peak = 0;
   double worst_sff = 0.0, worst_eta = 0.0, worst_wall = 0.0;
   for (std::size_t k = 0; k < all.size(); ++k) {
-    if (all[k].eta > all[peak].eta) peak = k;
+    const double magnitude = std::abs(all[k].eta);
+    if (magnitude > std::abs(all[peak].eta)) peak = k;
     worst_sff = std::max(worst_sff, all[k].sff_error);
-    if (all[k].eta > 0.1) worst_eta = std::max(worst_eta, std::abs(all[k].eta_sff - all[k].eta) / all[k].eta);
+    if (magnitude > 0.1)
+      worst_eta = std::max(worst_eta, std::abs(all[k].eta_sff - all[k].eta) / magnitude);
     worst_wall = std::max(worst_wall, all[k].wall_stress_error);
   }
   auto line = [&](const char* name, std::size_t k) {
@@ -38,7 +41,7 @@ void print_summary(const std::vector<sff::SnapshotAnalysis>& all, const std::vec
   std::printf("summary:\n");
   line("peak", peak);
   line("last", all.size() - 1);
-  std::printf("  worst |sigma_SFF - sigma|/|sigma| %.4f, worst |eta_SFF - eta|/eta %.4f (eta > 0.1), "
+  std::printf("  worst |sigma_SFF - sigma|/|sigma| %.4f, worst |eta_SFF - eta|/|eta| %.4f (|eta| > 0.1), "
               "worst |sigma(particle form) - sigma(walls)| %.4f p\n",
               worst_sff, worst_eta, worst_wall);
 }
