@@ -4,7 +4,8 @@
 
 usage: mean_of_seeds.py -o MEAN.h5 RUN_SEED_A.h5 RUN_SEED_B.h5 [...] [--force]
 
-Writes MEAN.h5, a reduced run file whose /series and /analysis/sff are the means over the runs
+The runs must be of one specimen: their stored configs equal but for the seed and the thread
+count (else an error names the keys that differ). Writes MEAN.h5, a reduced run file whose /series and /analysis/sff are the means over the runs
 (`sffcal calibrate` and `sffcal fe-check` read it as a run file), and MEAN.noise.json: the seeds,
 the runs and the noise per quantity (q/p, volumetric strain, p/p0: the RMS over the rows of the
 standard deviation across the seeds; for two, RMS(a - b)/sqrt(2)).
@@ -40,10 +41,15 @@ def main():
                 sys.exit(f"mean_of_seeds.py: {path} has no /analysis/sff (run `sffcal sff` on it)")
     if len(set(run_seeds)) < len(run_seeds):
         sys.exit(f"mean_of_seeds.py: the runs' seeds repeat ({run_seeds}): the noise needs distinct seeds")
-    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-    seeds.mean_run_file(args.runs, args.output, "scripts/mean_of_seeds.py")
+    try:
+        seeds.check_same_specimen(args.runs)  # before anything is written
+        os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
+        seeds.mean_run_file(args.runs, args.output, "scripts/mean_of_seeds.py")
+        noise = seeds.noise(args.runs)
+    except ValueError as e:
+        sys.exit(f"mean_of_seeds.py: {e}")
     record = {"seeds": run_seeds, "runs": [os.path.basename(r) for r in args.runs],
-              "noise": seeds.noise(args.runs),
+              "noise": noise,
               "definition": "RMS over the common rows of the standard deviation across the seeds "
                             "(two seeds: RMS(a - b)/sqrt(2)); the mean of K seeds scatters by noise/sqrt(K)"}
     with open(noise_file, "w") as f:

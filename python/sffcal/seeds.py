@@ -3,14 +3,50 @@ a reduced run file, and the DEM's own noise, the scatter between seeds (issue 19
 difference between two seeds of the same specimen divided by sqrt(2)). Used by the main job's
 `mean` stage (scripts/pipeline.py) and by bench/calibration/."""
 import os
+import tomllib
 
 import h5py
 import numpy as np
 
 from sffcal.reduce import reduce
+from sffcal.runfile import config_text
 
 # The noise is measured on these: q/p, the volumetric strain and p/p0 (undrained tests).
 NOISE_KEYS = ("eta", "volumetric_strain", "p_ratio")
+
+
+def _flat(table, prefix=""):
+    """A TOML table as {"section.key": value}."""
+    out = {}
+    for key, value in table.items():
+        if isinstance(value, dict):
+            out.update(_flat(value, prefix + key + "."))
+        else:
+            out[prefix + key] = value
+    return out
+
+
+def check_same_specimen(runs):
+    """Raises ValueError unless the runs' stored configs (the root attribute `config`) are the
+    same but for the packing seed and the thread count (which changes nothing but the time): the
+    mean and the noise are those of one specimen's seeds. Names the first run and the keys that
+    differ."""
+    configs = []
+    for path in runs:
+        with h5py.File(path, "r") as f:
+            text = config_text(f)
+        if not text:
+            raise ValueError(f"{path}: no stored config (root attribute 'config'): cannot tell "
+                             "which specimen it is")
+        flat = _flat(tomllib.loads(text))
+        for key in ("seed", "threads"):
+            flat.pop(key, None)
+        configs.append(flat)
+    for path, config in zip(runs[1:], configs[1:]):
+        differ = sorted(k for k in set(config) | set(configs[0]) if config.get(k) != configs[0].get(k))
+        if differ:
+            raise ValueError(f"{path} and {runs[0]} are not seeds of one specimen: their configs "
+                             f"differ in {', '.join(differ)}")
 
 
 def _common_rows(strains):
@@ -34,6 +70,7 @@ def noise(runs):
     pairs. The mean of K seeds scatters by noise/sqrt(K)."""
     if len(runs) < 2:
         raise ValueError("the noise needs at least two seeds")
+    check_same_specimen(runs)
     strains, columns = [], {k: [] for k in NOISE_KEYS}
     for path in runs:
         with h5py.File(path, "r") as f:
@@ -54,7 +91,9 @@ def mean_run_file(runs, target, by):
     snapshot (the snapshots are at the same nominal strains; as many as the run with the fewest).
     Integer columns (steps, snapshot numbers) are the first run's. The root note `note:mean_of`
     names the runs and their seeds (`by`: the program). `sffcal calibrate` and `sffcal fe-check`
-    read the file as they read a run file."""
+    read the file as they read a run file. ValueError where the runs are not of one specimen
+    (check_same_specimen)."""
+    check_same_specimen(runs)
     reduce(runs[0], target, by)
     files = [h5py.File(r, "r") for r in runs]
     try:

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """python/sffcal/seeds.py on run files whose series are known: the mean of two seeds and the
-DEM's noise between them (issue 19: RMS(a - b)/sqrt(2)), on rows and strains that differ.
+DEM's noise between them (issue 19: RMS(a - b)/sqrt(2)), on rows and strains that differ; runs of
+another specimen refused by name.
 
 usage: seeds_test.py  (exit 0 when every check holds; run by ctest)
 """
@@ -23,9 +24,14 @@ def check(condition, text):
         print("FAIL", text)
 
 
-def write_run(path, seed, strain, eta, eps_v, p, snapshot_strain, a_c, sign=1.0):
+CONFIG = 'seed = {seed}\nthreads = {threads}\nbodies = 400\n[preparation]\ncompaction_friction = {friction}\n'
+
+
+def write_run(path, seed, strain, eta, eps_v, p, snapshot_strain, a_c, sign=1.0, friction=0.15):
     with h5py.File(path, "w") as f:
         f.attrs["seed"] = seed
+        # the stored config: the same specimen but for the seed (and the thread count)
+        f.attrs["config"] = CONFIG.format(seed=seed, threads=seed, friction=friction)
         s = f.create_group("series")
         for name, values in (("axial_strain", sign * strain), ("eta", eta), ("volumetric_strain", eps_v),
                              ("p", p), ("step", np.arange(len(strain)) * 10)):
@@ -71,6 +77,18 @@ def case(folder, sign):
         check(False, "one seed: no error")
     except ValueError:
         pass
+    # Another specimen (compaction friction 0.5) is refused by name, before anything is written.
+    other = os.path.join(folder, f"other{sign:+.0f}.h5")
+    write_run(other, 3, b_strain, 1.0 + b_strain, 0 * b_strain, 1e5 * (1 + b_strain),
+              np.array([0.0, 0.1]), np.array([0.3, 0.7]), sign, friction=0.5)
+    for call in (lambda: seeds.noise([a, other]),
+                 lambda: seeds.mean_run_file([a, other], os.path.join(folder, "refused.h5"), "t")):
+        try:
+            call()
+            check(False, f"sign {sign}: another specimen averaged")
+        except ValueError as e:
+            check("preparation.compaction_friction" in str(e), f"sign {sign}: message {e}")
+    check(not os.path.exists(os.path.join(folder, "refused.h5")), f"sign {sign}: refused file written")
 
 
 def main():
