@@ -6,7 +6,7 @@
   bench/matrix/make_configs.py and the pipeline;
 - reduce: a reduced copy of a run file (no snapshots, no checkpoint);
 - seeds: the mean of several seeds of one specimen as a reduced run file, and the DEM's noise
-  between them (the main job's mean stage, bench/calibration/);
+  between them (scripts/mean_of_seeds.py, the main job's mean stage; bench/calibration/);
 - sff_table: the Markdown table of SFF results of several runs;
 - sff_plots: drawings shared by several scripts (the SFF decomposition of q/p).
 
