@@ -128,9 +128,11 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
   const double d_zeta_l = -par.e_A * d_A_l;
 
   // Bounding and dilatancy surfaces (Eq. 7-9).
-  const double exp_b = std::exp(-par.n_b * psi), exp_d = std::exp(par.n_d * zeta);
+  // The bounding slope n_b, plus n_b_loose where psi > 0 (the derivative of that branch).
+  const double n_bound = psi > 0.0 ? par.n_b + par.n_b_loose : par.n_b;
+  const double exp_b = std::exp(-n_bound * psi), exp_d = std::exp(par.n_d * zeta);
   const double M_b = g * par.M_c * exp_b - par.m, M_d = g * par.M_c * exp_d - par.m;
-  const Row6 d_M_b_s = par.M_c * exp_b * (d_g_s - (g * par.n_b) * d_psi);
+  const Row6 d_M_b_s = par.M_c * exp_b * (d_g_s - (g * n_bound) * d_psi);
   const Row6 d_M_b_a = (par.M_c * exp_b) * d_g_a;
   const Row6 d_M_d_s = par.M_c * exp_d * (d_g_s + (g * par.n_d) * d_zeta_s);
   const Row6 d_M_d_a = par.M_c * exp_d * (d_g_a + (g * par.n_d) * d_zeta_a);
@@ -201,7 +203,7 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
   d.fabric = (dlambda * K * dD_dA * d.fabric_start / step.scale) * kDelta;
   const double db0_de = -par.c_h * par.G0 * par.h0 / std::sqrt(p / kAtmosphericPressure);
   const double dh_de = db0_de / distance;
-  const double dM_b_de = -par.M_c * exp_b * g * par.n_b;
+  const double dM_b_de = -par.M_c * exp_b * g * n_bound;
   d.void_ratio.tail<6>() = -(2.0 / 3.0) * dlambda * (dh_de * back + (h * k * dM_b_de) * n);
   if (floored)
     d.alpha_in.setZero();

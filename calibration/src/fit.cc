@@ -27,7 +27,7 @@ using fit_detail::run_test;
 namespace {
 
 // The model's parameters, then a_cs.
-static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 15);
+static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 16);
 
 // The index of a parameter in the fit vector, by its name in kParameterFields (at compile time:
 // a misspelt name does not compile).
@@ -40,7 +40,8 @@ constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c
               kC = fit_index("c"), kEGamma = fit_index("e_gamma"),
               kLambdaC = fit_index("lambda_c"), kXi = fit_index("xi"), kH0 = fit_index("h0"),
               kCh = fit_index("c_h"), kNb = fit_index("n_b"), kA0 = fit_index("A0"),
-              kNd = fit_index("n_d"), kEA = fit_index("e_A"), kKF = fit_index("k_F");
+              kNd = fit_index("n_d"), kEA = fit_index("e_A"), kKF = fit_index("k_F"),
+              kNbLoose = fit_index("n_b_loose");
 const std::array<const char*, kNumFitParameters> kNames = [] {
   std::array<const char*, kNumFitParameters> names{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
@@ -137,9 +138,10 @@ DriverOptions FitOptions::report_driver_options() {
 }
 
 FitVector FitOptions::default_initial() {
-  // Toyoura-like values of docs/model.md (DM04 Table 1), a_cs = 1.
-  return {125.0, 0.05, 1.25, 0.712, 0.934, 0.019, 0.7, 0.01,
-          7.05,  0.968, 1.1, 0.704, 3.5, 0.1, 5.0, 1.0};
+  // Toyoura-like values of docs/model.md (DM04 Table 1), n_b_loose = 0 (DM04's one slope),
+  // a_cs = 1.
+  return {125.0, 0.05, 1.25, 0.712, 0.934, 0.019, 0.7, 0.01, 7.05,
+          0.968, 1.1,  0.704, 3.5, 0.1,  5.0,  0.0, 1.0};
 }
 
 // The model's parameters search kParameterFields' fit ranges; a_cs, the fabric at the critical
@@ -420,9 +422,9 @@ class Calibration {
   void fit_critical_state_line();  // stage csl: M_c, c, e_Gamma, lambda_c, xi
   void bound_c_h();                // c_h e_Gamma < 1
   void estimate_elasticity();      // stage elastic: G0, nu from the first output interval
-  void prepare_paths();            // the strain grids; whether c_h is identifiable
+  void prepare_paths();            // the strain grids; whether c_h, n_b_loose are identifiable
   void fit_fabric();               // stage fabric: a_cs measured, k_F fitted
-  void fit_plastic();              // stage plastic: h0, c_h, n_b, A0, n_d, e_A
+  void fit_plastic();              // stage plastic: h0, c_h, n_b, A0, n_d, e_A, n_b_loose
   void fit_jointly();              // stage joint: all but the critical state line
   CalibrationResult finish();      // values, bounds, errors per test, the SFF relation
 
@@ -433,7 +435,8 @@ class Calibration {
  private:
   void set(int i, double value, double error, const char* stage,
            double error_independent = -1.0);
-  // The free ones of `wanted`: not fixed by the user, and c_h only where identifiable.
+  // The free ones of `wanted`: not fixed by the user, and c, c_h, n_b_loose only where
+  // identifiable.
   std::vector<int> free_of(std::initializer_list<int> wanted) const;
   // One least-squares stage over every test's path, recorded in the result.
   void run_stage(Stage stage, const ResidualSpec& spec, const std::vector<int>& free, int starts);
@@ -447,6 +450,7 @@ class Calibration {
   std::vector<Grid> grids_;
   bool c_h_identifiable_ = true;
   bool c_identifiable_ = false;  // an extension test: c = M_e / M_c
+  bool n_b_loose_identifiable_ = true;  // a test starts looser than the critical state line
   // The tests whose end stands for the critical state (csl_tests()).
   std::vector<std::size_t> csl_tests_;
   std::uint64_t stage_seed_ = 0;
@@ -641,12 +645,24 @@ void Calibration::prepare_paths() {
   if (!c_h_identifiable_ && !user_fixed_[kCh])
     result_.notes.push_back("c_h held (initial void ratios span less than 0.05: it trades off "
                             "with h0)");
+  // n_b_loose acts only where psi > 0: it needs a test that starts looser than the critical state
+  // line (of the csl stage). A dense test's path crosses psi = 0 only at its end.
+  n_b_loose_identifiable_ = false;
+  for (const TestData& t : tests_) {
+    const double e_c =
+        x_[kEGamma] - x_[kLambdaC] * std::pow(t.p0 / kAtmosphericPressure, x_[kXi]);
+    n_b_loose_identifiable_ = n_b_loose_identifiable_ || t.e0 > e_c;
+  }
+  if (!n_b_loose_identifiable_ && !user_fixed_[kNbLoose])
+    result_.notes.push_back("n_b_loose held at " + std::to_string(x_[kNbLoose]) +
+                            " (no test starts looser than the critical state line: psi_0 <= 0)");
 }
 
 std::vector<int> Calibration::free_of(std::initializer_list<int> wanted) const {
   std::vector<int> free;
   for (int i : wanted)
-    if (!user_fixed_[i] && (i != kCh || c_h_identifiable_) && (i != kC || c_identifiable_))
+    if (!user_fixed_[i] && (i != kCh || c_h_identifiable_) && (i != kC || c_identifiable_) &&
+        (i != kNbLoose || n_b_loose_identifiable_))
       free.push_back(i);
   return free;
 }
@@ -745,12 +761,14 @@ void Calibration::fit_fabric() {
 void Calibration::fit_plastic() {
   ResidualSpec spec = base_spec();
   spec.fabric = false;
-  run_stage(Stage::kPlastic, spec, free_of({kH0, kCh, kNb, kA0, kNd, kEA}), options_.starts);
+  run_stage(Stage::kPlastic, spec, free_of({kH0, kCh, kNb, kA0, kNd, kEA, kNbLoose}),
+            options_.starts);
 }
 
 void Calibration::fit_jointly() {
   run_stage(Stage::kJoint, base_spec(),
-            free_of({kG0, kNu, kMc, kC, kH0, kCh, kNb, kA0, kNd, kEA, kKF}), options_.starts);
+            free_of({kG0, kNu, kMc, kC, kH0, kCh, kNb, kA0, kNd, kEA, kKF, kNbLoose}),
+            options_.starts);
 }
 
 CalibrationResult Calibration::finish() {

@@ -48,7 +48,11 @@ Parameters<double> read_parameters_json(const std::string& path) {
   for (const ParameterField<double>& field : kFields) {
     const char* name = field.name;
     const std::string key = std::string("parameters.") + name;
-    if (!params.contains(name)) fail(path, "missing key '" + key + "'");
+    if (!params.contains(name)) {
+      if (field.required()) fail(path, "missing key '" + key + "'");
+      par.*field.member = field.value_if_absent;  // a file older than the parameter
+      continue;
+    }
     const Json& entry = params[name];
     if (!entry.is_object() || !entry.contains("value"))
       fail(path, "missing key '" + key + ".value'");

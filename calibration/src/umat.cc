@@ -40,11 +40,14 @@ void to_abaqus(const Tensor<double>& t, double* v, int n, double sign) {
   for (int k = 0; k < n; ++k) v[k] = sign * t(kRow[k], kCol[k]);
 }
 
-// The 15 parameters in the order of umat.h (that of kParameterFields).
-Parameters<double> parameters_from(const double* p) {
+// The parameters in the order of umat.h (that of kParameterFields): the first `count` from
+// PROPS, the rest (added after the first version, e.g. n_b_loose) at their value_if_absent.
+Parameters<double> parameters_from(const double* p, int count) {
   Parameters<double> par;
-  for (std::size_t k = 0; k < calibration::kParameterFields<double>.size(); ++k)
-    par.*calibration::kParameterFields<double>[k].member = p[k];
+  for (std::size_t k = 0; k < calibration::kParameterFields<double>.size(); ++k) {
+    const auto& field = calibration::kParameterFields<double>[k];
+    par.*field.member = static_cast<int>(k) < count ? p[k] : field.value_if_absent;
+  }
   return par;
 }
 
@@ -123,9 +126,11 @@ void sffcal_umat(double* stress, double* statev, double* ddsdde, double* /*sse*/
     if (*nprops < SFFCAL_UMAT_NPROPS_STATE)
       throw std::runtime_error("NPROPS = " + std::to_string(*nprops) +
                                ": PROPS(1..7) must give e_0 and F_0");
-    const Parameters<double> par = *nprops >= SFFCAL_UMAT_NPROPS_ALL
-                                       ? parameters_from(props + SFFCAL_UMAT_PROP_PARAMETERS)
-                                       : parameters_from_file();
+    const Parameters<double> par =
+        *nprops >= SFFCAL_UMAT_NPROPS_ALL
+            ? parameters_from(props + SFFCAL_UMAT_PROP_PARAMETERS,
+                              *nprops - SFFCAL_UMAT_PROP_PARAMETERS)
+            : parameters_from_file();
     calibration::validate_parameters(par);
 
     State<double> start;

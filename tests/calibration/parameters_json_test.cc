@@ -83,6 +83,24 @@ TEST(ParametersJson, RoundTripIsExact) {
   EXPECT_EQ(q.n_d, p.n_d);
   EXPECT_EQ(q.e_A, p.e_A);
   EXPECT_EQ(q.k_F, p.k_F);
+  EXPECT_EQ(q.n_b_loose, p.n_b_loose);
+  std::remove(path.c_str());
+}
+
+// n_b_loose came after the first parameter files: a file without it is the model it was written
+// for (n_b_loose = 0); given, it is read and checked like the others.
+TEST(ParametersJson, TheLooseSlopeMayBeAbsentAndIsReadWhereGiven) {
+  const std::string path = temp_path("loose_slope");
+  write_text(path, valid_text());
+  EXPECT_EQ(read_parameters_json(path).n_b_loose, 0.0);
+  std::string text = valid_text();
+  text.insert(text.rfind("}}"), ", \"n_b_loose\": {\"value\": 7.5, \"unit\": \"1\"}");
+  write_text(path, text);
+  EXPECT_EQ(read_parameters_json(path).n_b_loose, 7.5);
+  text = valid_text();
+  text.insert(text.rfind("}}"), ", \"n_b_loose\": {\"value\": -1, \"unit\": \"1\"}");
+  const std::string negative = read_error(text);
+  EXPECT_NE(negative.find("'n_b_loose'"), std::string::npos) << negative;
   std::remove(path.c_str());
 }
 

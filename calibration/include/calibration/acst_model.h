@@ -29,16 +29,20 @@ inline constexpr double kAtmosphericPressure = 101325.0;
 template <typename T>
 using Tensor = Eigen::Matrix<T, 3, 3>;  // symmetric, compression positive
 
-/// The 15 parameters of acst-model.md. All are dimensionless (G0 multiplies p_a).
+/// The 15 parameters of acst-model.md, then n_b_loose, the bounding surface's added slope on the
+/// loose side (docs/model.md Eq. 7; 0 is the model of acst-model.md). All are dimensionless (G0
+/// multiplies p_a).
 template <typename T>
 struct Parameters {
-  T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F;
+  T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F, n_b_loose;
 };
 
 namespace detail {
 /// The void ratio where the elastic law's (2.97 - e)^2 vanishes (DM04 Eq. 5).
 inline constexpr double kElasticVoidLimit = 2.97;
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+/// ParameterField::value_if_absent of a parameter every parameter file must give.
+inline constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
 }  // namespace detail
 
 /// Where a parameter is physical: low < x < high, with <= at a closed end.
@@ -54,7 +58,9 @@ struct ParameterRange {
 
 /// One parameter of acst-model.md: its name (the key of the parameter file and of the fit's
 /// tables), its member, its unit, the range validate_parameters accepts (besides the coupled
-/// conditions m < c M_c and c_h e_gamma < 1) and the calibration's default search range.
+/// conditions m < c M_c and c_h e_gamma < 1), the calibration's default search range, and the
+/// value a parameter file or UMAT PROPS without it stands for (kRequired: none; a parameter added
+/// after the first version takes the value that gives the model without it).
 template <typename T>
 struct ParameterField {
   const char* name;
@@ -62,12 +68,14 @@ struct ParameterField {
   const char* unit;  ///< "1": every parameter is dimensionless (G0 multiplies p_a)
   ParameterRange physical;
   double fit_low, fit_high;
+  double value_if_absent = detail::kRequired;
+  constexpr bool required() const { return value_if_absent != value_if_absent; }  // NaN: none
 };
 
-/// The parameters in the order of acst-model.md: the one list that the parameter file, its
-/// validation, the fit vector, the fit's bounds and tables and docs/model.md's table follow.
+/// The parameters in the order of acst-model.md, then n_b_loose (ours): the one list that the
+/// parameter file, its validation, the fit vector, the fit's bounds and tables and docs/model.md's table follow.
 template <typename T>
-inline constexpr std::array<ParameterField<T>, 15> kParameterFields = {{
+inline constexpr std::array<ParameterField<T>, 16> kParameterFields = {{
     {"G0", &Parameters<T>::G0, "1", {0.0, detail::kUnbounded, false, false}, 5.0, 3000.0},
     {"nu", &Parameters<T>::nu, "1", {-1.0, 0.5, false, false}, 0.0, 0.45},
     {"M_c", &Parameters<T>::M_c, "1", {0.0, detail::kUnbounded, false, false}, 0.3, 2.5},
@@ -83,6 +91,8 @@ inline constexpr std::array<ParameterField<T>, 15> kParameterFields = {{
     {"n_d", &Parameters<T>::n_d, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 20.0},
     {"e_A", &Parameters<T>::e_A, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 3.0},
     {"k_F", &Parameters<T>::k_F, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 200.0},
+    {"n_b_loose", &Parameters<T>::n_b_loose, "1", {0.0, detail::kUnbounded, true, false}, 0.0,
+     60.0, 0.0},
 }};
 
 template <typename T>

@@ -170,8 +170,12 @@ bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuanti
   q.A = detail::contract(state.fabric, q.n);
   q.zeta = q.psi - par.e_A * (q.A - 1.0);
 
-  // Eq. (7)-(8): bounding and dilatancy image back-stress ratios.
-  q.alpha_b = (kSqrtTwoThirds * (q.g * par.M_c * exp(-par.n_b * q.psi) - par.m)) * q.n;
+  // Eq. (7)-(8): bounding and dilatancy image back-stress ratios; the bounding slope is
+  // n_b + n_b_loose where psi > 0 (docs/model.md, ours).
+  const T loose_psi = value_of(q.psi) > 0.0 ? q.psi : T(0.0);
+  q.alpha_b = (kSqrtTwoThirds *
+               (q.g * par.M_c * exp(-par.n_b * q.psi - par.n_b_loose * loose_psi) - par.m)) *
+              q.n;
   q.alpha_d = (kSqrtTwoThirds * (q.g * par.M_c * exp(par.n_d * q.zeta) - par.m)) * q.n;
 
   // Eq. (9)-(12): dilatancy, hardening, plastic modulus, N.
