@@ -91,10 +91,10 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
   // Elastic moduli (Eq. 1) at fixed e.
   const double a = detail::kElasticVoidLimit - e;
   const double G = par.G0 * kAtmosphericPressure * a * a / (1.0 + e) *
-                   std::sqrt(p / kAtmosphericPressure);
+                   detail::power(p / kAtmosphericPressure, par.n_G);
   const double kappa = 2.0 * (1.0 + par.nu) / (3.0 * (1.0 - 2.0 * par.nu));
   const double K = kappa * G;
-  const Row6 d_G = (G / (2.0 * p)) * d_p;  // d / d sigma only, as d_K = kappa d_G
+  const Row6 d_G = (par.n_G * G / p) * d_p;  // d / d sigma only, as d_K = kappa d_G
   const Row6 d_K = kappa * d_G;
 
   // Lode angle and g (Eq. 4).
@@ -613,30 +613,40 @@ bool elastic_jacobian(const Parameters<double>& par, const State<double>& start,
   const double p0 = kDelta.dot(sigma0) / 3.0;
   const double u0 = 1.0 + start.void_ratio;
   const double c = 1.0 + detail::kElasticVoidLimit;
-  const double x = exprel(w), xm = exprel(-w);
-  const double psi = c * c * x / u0 - 2.0 * c + u0 * xm;
-  const double dpsi_du0 = -c * c * x / (u0 * u0) + xm;
+  const double ex = exprel(w), exm = exprel(-w);
+  const double psi = c * c * ex / u0 - 2.0 * c + u0 * exm;
+  const double dpsi_du0 = -c * c * ex / (u0 * u0) + exm;
   const double dpsi_dw = c * c * exprel_derivative(w) / u0 - u0 * exprel_derivative(-w);
   const double kappa = 2.0 * (1.0 + par.nu) / (3.0 * (1.0 - 2.0 * par.nu));
-  const double c_g = par.G0 * std::sqrt(kAtmosphericPressure);
-  const double beta = 0.5 * kappa * c_g;
-  const double root0 = std::sqrt(p0);
-  const double root1 = root0 + beta * w * psi;
-  const double shear = c_g * (root0 * psi + 0.5 * beta * w * psi * psi);
-  // Differentials w.r.t. (p0, u0, w) of the scalars.
-  const double droot0_dp0 = 0.5 / root0;
-  const double droot1_dp0 = droot0_dp0, droot1_du0 = beta * w * dpsi_du0,
-               droot1_dw = beta * (psi + w * dpsi_dw);
-  const double dshear_dp0 = c_g * psi * droot0_dp0;
-  const double dshear_du0 = c_g * (root0 + beta * w * psi) * dpsi_du0;
-  const double dshear_dw = c_g * (root0 * dpsi_dw + 0.5 * beta * (psi * psi + 2.0 * w * psi * dpsi_dw));
+  const double n = par.n_G, x = 1.0 - n;
+  const double c_g = par.G0 * detail::power(kAtmosphericPressure, x);
+  const double p0_n = detail::power(p0, n);
+  const double beta = x * kappa * c_g * p0_n / p0;  // z = beta w psi
+  const double z = beta * w * psi;
+  double growth, phi;
+  detail::elastic_growth(z, x, growth, phi);
+  const double shear = c_g * psi * p0_n * phi;
+  // phi'(z) and d growth / dz; growth = (1 + z)^r, phi = ((1 + z)^r - 1) / (r z), r = 1/x.
+  const double r = 1.0 / x;
+  const double dgrowth_dz = r * growth / (1.0 + z);
+  const double dphi_dz = std::abs(z) < 1e-4
+                             ? (r - 1.0) * (0.5 + z * ((r - 2.0) / 3.0 + z * (r - 2.0) * (r - 3.0) / 8.0))
+                             : (dgrowth_dz * z - (growth - 1.0)) / (r * z * z);
+  // Differentials w.r.t. (p0, u0, w) of the scalars; p1 = p0 growth.
+  const double dz_dp0 = -x * z / p0, dz_du0 = beta * w * dpsi_du0,
+               dz_dw = beta * (psi + w * dpsi_dw);
+  const double dp1_dp0 = growth + p0 * dgrowth_dz * dz_dp0, dp1_du0 = p0 * dgrowth_dz * dz_du0,
+               dp1_dw = p0 * dgrowth_dz * dz_dw;
+  const double dshear_dp0 = c_g * psi * p0_n * (n * phi / p0 + dphi_dz * dz_dp0);
+  const double dshear_du0 = c_g * p0_n * (dpsi_du0 * phi + psi * dphi_dz * dz_du0);
+  const double dshear_dw = c_g * p0_n * (dpsi_dw * phi + psi * dphi_dz * dz_dw);
   const Row6 dp0_dsigma = kDelta.transpose() / 3.0;
   const Row6 dw_dstrain = kDelta.transpose();
-  // sigma1 = sigma0 - p0 delta + 2 shear de + root1^2 delta.
+  // sigma1 = sigma0 - p0 delta + 2 shear de + p1 delta.
   j.stress_stress = Matrix6::Identity() +
-                    (-kDelta + 2.0 * dshear_dp0 * de + 2.0 * root1 * droot1_dp0 * kDelta) * dp0_dsigma;
-  j.stress_void_ratio = 2.0 * dshear_du0 * de + 2.0 * root1 * droot1_du0 * kDelta;
-  j.stress_strain = (2.0 * dshear_dw * de + 2.0 * root1 * droot1_dw * kDelta) * dw_dstrain +
+                    (-kDelta + 2.0 * dshear_dp0 * de + dp1_dp0 * kDelta) * dp0_dsigma;
+  j.stress_void_ratio = 2.0 * dshear_du0 * de + dp1_du0 * kDelta;
+  j.stress_strain = (2.0 * dshear_dw * de + dp1_dw * kDelta) * dw_dstrain +
                     2.0 * shear * (Matrix6::Identity() - kDelta * kDelta.transpose() / 3.0);
   const double decay = std::exp(-w);  // e1 = e0 + u0 expm1(-w)
   j.void_ratio_void_ratio = decay;

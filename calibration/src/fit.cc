@@ -27,7 +27,7 @@ using fit_detail::run_test;
 namespace {
 
 // The model's parameters, then a_cs.
-static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 16);
+static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 17);
 
 // The index of a parameter in the fit vector, by its name in kParameterFields (at compile time:
 // a misspelt name does not compile).
@@ -41,7 +41,7 @@ constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c
               kLambdaC = fit_index("lambda_c"), kXi = fit_index("xi"), kH0 = fit_index("h0"),
               kCh = fit_index("c_h"), kNb = fit_index("n_b"), kA0 = fit_index("A0"),
               kNd = fit_index("n_d"), kEA = fit_index("e_A"), kKF = fit_index("k_F"),
-              kNbLoose = fit_index("n_b_loose");
+              kNbLoose = fit_index("n_b_loose"), kNG = fit_index("n_G");
 const std::array<const char*, kNumFitParameters> kNames = [] {
   std::array<const char*, kNumFitParameters> names{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
@@ -138,10 +138,10 @@ DriverOptions FitOptions::report_driver_options() {
 }
 
 FitVector FitOptions::default_initial() {
-  // Toyoura-like values of docs/model.md (DM04 Table 1), n_b_loose = 0 (DM04's one slope),
-  // a_cs = 1.
+  // Toyoura-like values of docs/model.md (DM04 Table 1), n_b_loose = 0 and n_G = 1/2 (DM04's
+  // bounding surface and elasticity), a_cs = 1.
   return {125.0, 0.05, 1.25, 0.712, 0.934, 0.019, 0.7, 0.01, 7.05,
-          0.968, 1.1,  0.704, 3.5, 0.1,  5.0,  0.0, 1.0};
+          0.968, 1.1,  0.704, 3.5, 0.1,  5.0,  0.0, 0.5,  1.0};
 }
 
 // The model's parameters search kParameterFields' fit ranges; a_cs, the fabric at the critical
@@ -422,10 +422,10 @@ class Calibration {
   void fit_critical_state_line();  // stage csl: M_c, c, e_Gamma, lambda_c, xi
   void bound_c_h();                // c_h e_Gamma < 1
   void estimate_elasticity();      // stage elastic: G0, nu from the first output interval
-  void prepare_paths();            // the strain grids; whether c_h, n_b_loose are identifiable
+  void prepare_paths();            // the strain grids; whether c_h, n_b_loose, n_G are identifiable
   void fit_fabric();               // stage fabric: a_cs measured, k_F fitted
   void fit_plastic();              // stage plastic: h0, c_h, n_b, A0, n_d, e_A, n_b_loose
-  void fit_jointly();              // stage joint: all but the critical state line
+  void fit_jointly();              // stage joint: all but the critical state line and m
   CalibrationResult finish();      // values, bounds, errors per test, the SFF relation
 
   bool has(Stage s) const {
@@ -435,7 +435,7 @@ class Calibration {
  private:
   void set(int i, double value, double error, const char* stage,
            double error_independent = -1.0);
-  // The free ones of `wanted`: not fixed by the user, and c, c_h, n_b_loose only where
+  // The free ones of `wanted`: not fixed by the user, and c, c_h, n_b_loose, n_G only where
   // identifiable.
   std::vector<int> free_of(std::initializer_list<int> wanted) const;
   // One least-squares stage over every test's path, recorded in the result.
@@ -451,6 +451,7 @@ class Calibration {
   bool c_h_identifiable_ = true;
   bool c_identifiable_ = false;  // an extension test: c = M_e / M_c
   bool n_b_loose_identifiable_ = true;  // a test starts looser than the critical state line
+  bool n_G_identifiable_ = true;        // mean stresses over more than a factor 1.5
   // The tests whose end stands for the critical state (csl_tests()).
   std::vector<std::size_t> csl_tests_;
   std::uint64_t stage_seed_ = 0;
@@ -621,7 +622,7 @@ void Calibration::estimate_elasticity() {
     if (!(dq / deq > 0.0)) continue;
     const double G = dq / (3.0 * deq);
     const double f = kAtmosphericPressure * std::pow(2.97 - t.e0, 2) / (1.0 + t.e0) *
-                     std::sqrt(t.p0 / kAtmosphericPressure);
+                     std::pow(t.p0 / kAtmosphericPressure, x_[kNG]);
     g0.push_back(G / f);
     if (holds_lateral_stress(t.path)) nu.push_back(0.5 * (1.0 - dev / dea));
   }
@@ -656,13 +657,22 @@ void Calibration::prepare_paths() {
   if (!n_b_loose_identifiable_ && !user_fixed_[kNbLoose])
     result_.notes.push_back("n_b_loose held at " + std::to_string(x_[kNbLoose]) +
                             " (no test starts looser than the critical state line: psi_0 <= 0)");
+  // n_G sets how the stiffness follows p: it needs mean stresses apart (tests at several
+  // pressures, or one whose p moves, as an undrained test's does); at one p it trades off with G0.
+  double p_min = 1e300, p_max = 0.0;
+  for (const TestData& t : tests_)
+    for (double p : t.p) p_min = std::min(p_min, p), p_max = std::max(p_max, p);
+  n_G_identifiable_ = p_max > 1.5 * p_min;
+  if (!n_G_identifiable_ && !user_fixed_[kNG])
+    result_.notes.push_back("n_G held at " + std::to_string(x_[kNG]) +
+                            " (the tests' mean stresses span less than a factor 1.5)");
 }
 
 std::vector<int> Calibration::free_of(std::initializer_list<int> wanted) const {
   std::vector<int> free;
   for (int i : wanted)
     if (!user_fixed_[i] && (i != kCh || c_h_identifiable_) && (i != kC || c_identifiable_) &&
-        (i != kNbLoose || n_b_loose_identifiable_))
+        (i != kNbLoose || n_b_loose_identifiable_) && (i != kNG || n_G_identifiable_))
       free.push_back(i);
   return free;
 }
@@ -767,7 +777,7 @@ void Calibration::fit_plastic() {
 
 void Calibration::fit_jointly() {
   run_stage(Stage::kJoint, base_spec(),
-            free_of({kG0, kNu, kMc, kC, kH0, kCh, kNb, kA0, kNd, kEA, kKF, kNbLoose}),
+            free_of({kG0, kNu, kMc, kC, kH0, kCh, kNb, kA0, kNd, kEA, kKF, kNbLoose, kNG}),
             options_.starts);
 }
 

@@ -51,6 +51,7 @@ TEST(AcstImplicit, LocalJacobianMatchesAutomaticDifferentiation) {
   using Jet = ceres::Jet<double, kUnknowns>;
   Parameters<double> par = toyoura();
   par.n_b_loose = 4.0;  // the loose side's slope, for the last state
+  par.n_G = 0.3;        // not DM04's 1/2, whose power is a square root
   // A plastic state, one with alpha_in = alpha (the hardening floor), one from the apex and one
   // looser than the critical state line (psi > 0).
   std::vector<State<double>> starts = {loaded_state(0.80, 0.01), loaded_state(0.70, 0.05)};
@@ -102,10 +103,13 @@ TEST(AcstImplicit, LocalJacobianMatchesAutomaticDifferentiation) {
 TEST(AcstImplicit, ElasticClosedFormIsTheIntegratedHypoelasticLaw) {
   // A wide cone (m = 0.5) keeps a combined volumetric-deviatoric increment elastic; the closed
   // form must equal the explicit integration of Eq. (1) at a tight tolerance.
+  // Pressure exponents: DM04's 1/2 (its own closed form), 0.3, and 0 (K independent of p).
   Parameters<double> par = toyoura();
   par.m = 0.5;
   const State<double> s0 = isotropic_state(kP0, 0.8, triaxial_deviator(0.2));
+  for (const double n_G : {0.5, 0.3, 0.0})
   for (const double size : {1e-5, 1e-3, -1e-3}) {
+    par.n_G = n_G;
     const Tensor<double> deps =
         general_increment(0.1 * std::abs(size)) + size * Tensor<double>::Identity();
     State<double> exact, reference;
@@ -114,7 +118,7 @@ TEST(AcstImplicit, ElasticClosedFormIsTheIntegratedHypoelasticLaw) {
     ASSERT_EQ(update_state(par, s0, deps, reference, IntegrationOptions::explicit_reference(1e-12)),
               UpdateStatus::kOk);
     EXPECT_LT((exact.stress - reference.stress).norm(), 1e-10 * reference.stress.norm())
-        << "size " << size;
+        << "size " << size << " n_G " << n_G;
     EXPECT_NEAR(exact.void_ratio, reference.void_ratio, 1e-13);
     EXPECT_EQ(exact.alpha, s0.alpha);
     EXPECT_EQ(exact.fabric, s0.fabric);
@@ -178,9 +182,12 @@ std::vector<TangentCase> tangent_cases() {
 }
 
 TEST(AcstImplicit, TangentMatchesCentredFiniteDifferences) {
-  const Parameters<double> par = toyoura();
+  Parameters<double> par = toyoura();
   const IntegrationOptions options;  // the FE default
-  for (const TangentCase& c : tangent_cases()) {
+  for (const double n_G : {0.5, 0.3})  // DM04's elastic exponent (closed form), and another
+  for (TangentCase c : tangent_cases()) {
+    par.n_G = n_G;
+    c.name += "_nG" + std::to_string(n_G).substr(0, 3);
     implicit_detail::Tape tape;
     State<double> end;
     ASSERT_EQ(implicit_detail::integrate_values(par, c.start, c.increment, options, end, &tape,
@@ -205,9 +212,11 @@ TEST(AcstImplicit, TangentMatchesCentredFiniteDifferences) {
 TEST(AcstImplicit, AnalyticTangentEqualsTheJetReplayWithErrorControl) {
   // With error control the update is piecewise smooth (the substeps change with the increment);
   // the tangent is the exact derivative of each piece: the hand-written sensitivities equal the
-  // Jet replay of the same tape.
-  const Parameters<double> par = toyoura();
+  // Jet replay of the same tape, with DM04's elastic exponent and another.
+  Parameters<double> par = toyoura();
+  for (const double n_G : {0.5, 0.3})
   for (const double tolerance : {0.0, 1e-4, 1e-6}) {
+    par.n_G = n_G;
     const IntegrationOptions options = IntegrationOptions::implicit_controlled(tolerance);
     for (const TangentCase& c : tangent_cases()) {
       Eigen::Matrix<double, 9, 9> D;
@@ -219,7 +228,8 @@ TEST(AcstImplicit, AnalyticTangentEqualsTheJetReplayWithErrorControl) {
       Eigen::Matrix<double, 6, 6> jet;
       for (int a = 0; a < 6; ++a)
         for (int b = 0; b < 6; ++b) jet(a, b) = end_jet.stress(kVoigtI[a], kVoigtJ[a]).v[b];
-      EXPECT_LT(max_relative(voigt_of(D), jet), 1e-12) << c.name << " tolerance " << tolerance;
+      EXPECT_LT(max_relative(voigt_of(D), jet), 1e-12)
+          << c.name << " tolerance " << tolerance << " n_G " << n_G;
     }
   }
 }

@@ -42,7 +42,8 @@ TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
   options.starts = 1;
   options.initial = truth;
   // Free: M_c, h0, n_b, A0, n_d, k_F (the others are fixed at the truth).
-  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs"};
+  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs",
+                   "n_b_loose", "n_G"};
   const char* free[] = {"M_c", "h0", "n_b", "A0", "n_d", "k_F"};
   const double distant[] = {1.5, 2.5, 2.0, 0.5, 2.0, 0.4};  // start = truth x factor
   for (int j = 0; j < 6; ++j) options.initial[fit_parameter_index(free[j])] *= distant[j];
@@ -80,7 +81,7 @@ TEST(FitIdentifiability, TheLooseSlopeIsFittedBackOnlyWhereATestStartsLoose) {
   options.starts = 1;
   options.initial = truth;
   options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs",
-                   "A0", "n_d", "k_F", "M_c"};
+                   "A0", "n_d", "k_F", "M_c", "n_G"};
   options.initial[fit_parameter_index("h0")] = 10.0;
   options.initial[fit_parameter_index("n_b")] = 2.0;
   options.initial[fit_parameter_index("n_b_loose")] = 0.0;  // DM04's one slope
@@ -102,6 +103,36 @@ TEST(FitIdentifiability, TheLooseSlopeIsFittedBackOnlyWhereATestStartsLoose) {
   EXPECT_TRUE(noted);
 }
 
+// n_G, the pressure exponent of the moduli, from a drained and an undrained test (whose p' path
+// follows K(p)), started from DM04's 1/2.
+TEST(FitIdentifiability, TheElasticExponentIsFittedBack) {
+  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
+  truth[fit_parameter_index("h0")] = 5.0;
+  truth[fit_parameter_index("n_G")] = 0.2;
+  const std::vector<TestData> tests = {
+      synthetic_test("dense", truth, 0.70, 0.1, 0.2, 41),
+      synthetic_test("undrained", truth, 0.80, 0.1, 0.2, 42, TestPath::kUndrainedCompression,
+                     0.05)};
+  FitOptions options;
+  options.stages = {Stage::kJoint};
+  options.starts = 1;
+  options.initial = truth;
+  options.fixed = {"nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "A0",
+                   "n_d", "k_F", "M_c", "n_b", "n_b_loose"};
+  options.initial[fit_parameter_index("G0")] = 80.0;
+  options.initial[fit_parameter_index("n_G")] = 0.5;
+  const CalibrationResult r = calibrate(tests, options);
+  for (const char* name : {"G0", "h0", "n_G"}) {
+    const int i = fit_parameter_index(name);
+    const ParameterEstimate& e = r.estimates[i];
+    RecordProperty(std::string(name) + "_fit", scientific(e.value));
+    RecordProperty(std::string(name) + "_se", scientific(e.standard_error));
+    ASSERT_GT(e.standard_error, 0.0) << name;
+    EXPECT_LT(std::abs(e.value - truth[i]), 3.0 * e.standard_error)
+        << name << ": fitted " << e.value << " +- " << e.standard_error << ", truth " << truth[i];
+  }
+}
+
 TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
   FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
   const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 21),
@@ -111,7 +142,8 @@ TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
   options.starts = 1;
   options.max_iterations = 6;
   options.initial = truth;
-  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "k_F"};
+  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "k_F",
+                   "n_b_loose", "n_G"};
   options.initial[fit_parameter_index("h0")] *= 2.0;
   options.initial[fit_parameter_index("n_d")] *= 0.6;
   std::vector<std::string> lines;

@@ -84,15 +84,17 @@ TEST(ParametersJson, RoundTripIsExact) {
   EXPECT_EQ(q.e_A, p.e_A);
   EXPECT_EQ(q.k_F, p.k_F);
   EXPECT_EQ(q.n_b_loose, p.n_b_loose);
+  EXPECT_EQ(q.n_G, p.n_G);
   std::remove(path.c_str());
 }
 
-// n_b_loose came after the first parameter files: a file without it is the model it was written
-// for (n_b_loose = 0); given, it is read and checked like the others.
-TEST(ParametersJson, TheLooseSlopeMayBeAbsentAndIsReadWhereGiven) {
+// n_b_loose and n_G came after the first parameter files: a file without them is the model it
+// was written for (n_b_loose = 0, n_G = 1/2); given, they are read and checked like the others.
+TEST(ParametersJson, ParametersAddedLaterMayBeAbsentAndAreReadWhereGiven) {
   const std::string path = temp_path("loose_slope");
   write_text(path, valid_text());
   EXPECT_EQ(read_parameters_json(path).n_b_loose, 0.0);
+  EXPECT_EQ(read_parameters_json(path).n_G, 0.5);
   std::string text = valid_text();
   text.insert(text.rfind("}}"), ", \"n_b_loose\": {\"value\": 7.5, \"unit\": \"1\"}");
   write_text(path, text);
@@ -101,6 +103,14 @@ TEST(ParametersJson, TheLooseSlopeMayBeAbsentAndIsReadWhereGiven) {
   text.insert(text.rfind("}}"), ", \"n_b_loose\": {\"value\": -1, \"unit\": \"1\"}");
   const std::string negative = read_error(text);
   EXPECT_NE(negative.find("'n_b_loose'"), std::string::npos) << negative;
+  text = valid_text();
+  text.insert(text.rfind("}}"), ", \"n_G\": {\"value\": 0.25, \"unit\": \"1\"}");
+  write_text(path, text);
+  EXPECT_EQ(read_parameters_json(path).n_G, 0.25);
+  text = valid_text();
+  text.insert(text.rfind("}}"), ", \"n_G\": {\"value\": 1, \"unit\": \"1\"}");
+  const std::string at_one = read_error(text);
+  EXPECT_NE(at_one.find("'n_G'"), std::string::npos) << at_one;
   std::remove(path.c_str());
 }
 

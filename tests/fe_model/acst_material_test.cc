@@ -32,6 +32,8 @@ calibration::Parameters<double> parameters() {
   p.n_d = 3.5;
   p.e_A = 0.1;
   p.k_F = 5.0;
+  p.n_b_loose = 0.0;  // DM04's bounding surface and elasticity
+  p.n_G = 0.5;
   return p;
 }
 

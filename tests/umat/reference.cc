@@ -26,7 +26,7 @@ extern "C" int reference_drained_triaxial(const double* parameters, double p0, d
   const double* v = parameters;
   const calibration::Parameters<double> par{v[0], v[1], v[2],  v[3],  v[4],  v[5],  v[6], v[7],
                                             v[8], v[9], v[10], v[11], v[12], v[13], v[14],
-                                            0.0 /* n_b_loose: NPROPS = 22 */};
+                                            0.0, 0.5 /* n_b_loose, n_G: NPROPS = 22 */};
   calibration::DriverOptions options;
   options.integration = calibration::IntegrationOptions();  // what the UMAT entry integrates with
   options.stress_tolerance = 1e-12;

@@ -58,15 +58,15 @@ T exprel(const T& w) {
 }
 
 /// The elastic response over the straight strain path deps, exact (ours, docs/model.md §4):
-/// with u = 1 + e = u0 exp(-t eps_v), the moduli of Eq. (1) are G = G0 sqrt(p_a) a(u) sqrt(p),
-/// a(u) = (3.97 - u)^2 / u, and K = kappa G; then d sqrt(p)/dt = kappa G0 sqrt(p_a) a(u) eps_v / 2
-/// and ds/dt = 2 G de integrate in closed form through Psi = int_0^1 a(u(t)) dt. alpha, alpha_in
-/// and F are unchanged. Returns false where p would reach 0 or e leave (0, 2.97).
+/// with u = 1 + e = u0 exp(-t eps_v), the moduli of Eq. (1) are G = c_g a(u) p^n, c_g =
+/// G0 p_a^(1-n), n = n_G, a(u) = (3.97 - u)^2 / u, and K = kappa G; then p^(1-n) grows linearly,
+/// d p^(1-n)/dt = (1 - n) kappa c_g a(u) eps_v, and ds/dt = 2 G de integrates in closed form
+/// through Psi = int_0^1 a(u(t)) dt (detail::elastic_growth). alpha, alpha_in and F are
+/// unchanged. Returns false where p would reach 0 or e leave (0, 2.97).
 template <typename T>
 bool elastic_path(const Parameters<T>& par, const State<T>& start, const Tensor<T>& deps,
                   State<T>& end) {
   using std::expm1;
-  using std::sqrt;
   end = start;
   const Tensor<T> I = Tensor<T>::Identity();
   const T w = deps.trace();
@@ -77,12 +77,15 @@ bool elastic_path(const Parameters<T>& par, const State<T>& start, const Tensor<
   const double c = 1.0 + detail::kElasticVoidLimit;  // a(u) = (c - u)^2 / u
   const T psi = (c * c) * exprel(w) / u0 - 2.0 * c + u0 * exprel(T(-w));
   const T kappa = 2.0 * (1.0 + par.nu) / (3.0 * (1.0 - 2.0 * par.nu));
-  const T c_g = par.G0 * std::sqrt(kAtmosphericPressure);
-  const T root_p0 = sqrt(p0);
-  const T root_p1 = root_p0 + 0.5 * kappa * c_g * w * psi;
-  if (!(value_of(root_p1) > 0.0)) return false;
-  const T shear_integral = c_g * (root_p0 * psi + 0.25 * kappa * c_g * w * psi * psi);  // int G dt
-  end.stress = (start.stress - p0 * I) + (2.0 * shear_integral) * de + (root_p1 * root_p1) * I;
+  const T x = 1.0 - par.n_G;
+  const T c_g = par.G0 * detail::power(T(kAtmosphericPressure), x);
+  const T p0_n = detail::power(p0, par.n_G);
+  const T z = x * kappa * c_g * w * psi * p0_n / p0;  // the relative growth of p^(1-n)
+  if (!(value_of(z) > -1.0)) return false;
+  T growth, phi;
+  detail::elastic_growth(z, x, growth, phi);
+  const T shear_integral = c_g * psi * p0_n * phi;  // int G dt
+  end.stress = (start.stress - p0 * I) + (2.0 * shear_integral) * de + (p0 * growth) * I;
   end.void_ratio = start.void_ratio + u0 * expm1(-w);  // e exactly unchanged at eps_v = 0
   return value_of(end.void_ratio) > 0.0 && value_of(end.void_ratio) < detail::kElasticVoidLimit;
 }

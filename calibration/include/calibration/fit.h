@@ -86,11 +86,11 @@ TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv
 /// path's direction (rising in compression, falling in extension), p0 or e0 out of range.
 void validate_test_data(const TestData& test);
 
-/// The fitted vector: the 16 model parameters (order of Parameters) and a_cs, the critical-state
+/// The fitted vector: the 17 model parameters (order of Parameters) and a_cs, the critical-state
 /// norm of the DEM fabric tensor A (F = A/a_cs).
-inline constexpr int kNumFitParameters = 17;
+inline constexpr int kNumFitParameters = 18;
 using FitVector = std::array<double, kNumFitParameters>;
-inline constexpr int kAcsIndex = 16;
+inline constexpr int kAcsIndex = 17;
 /// Names as in the parameter file, then "a_cs".
 const std::array<const char*, kNumFitParameters>& fit_parameter_names();
 /// Index of a name in FitVector; throws for an unknown name.

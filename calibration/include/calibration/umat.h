@@ -13,7 +13,8 @@
  *                 n_d, e_A, k_F (docs/model.md §5); with NPROPS < 22 they are read instead from
  *                 the parameter file (JSON, docs/model.md) named by the environment variable
  *                 SFFCAL_ACST_PARAMETERS.
- *   PROPS(23)     n_b_loose (docs/model.md Eq. 7); 0 (the model without it) when NPROPS = 22.
+ *   PROPS(23)     n_b_loose (docs/model.md Eq. 7); 0 (the model without it) when NPROPS < 23.
+ *   PROPS(24)     n_G (docs/model.md Eq. 1); 1/2 (the model without it) when NPROPS < 24.
  * STATEV (NSTATV >= SFFCAL_UMAT_NSTATV), compression positive, tensors in 11, 22, 33, 12, 13, 23:
  *   STATEV(1)      0 before the first increment (the state is then set from STRESS and PROPS:
  *                  alpha = alpha_in = s/p of the initial stress), 1 after
