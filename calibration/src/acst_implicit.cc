@@ -629,9 +629,10 @@ bool elastic_jacobian(const Parameters<double>& par, const State<double>& start,
   // phi'(z) and d growth / dz; growth = (1 + z)^r, phi = ((1 + z)^r - 1) / (r z), r = 1/x.
   const double r = 1.0 / x;
   const double dgrowth_dz = r * growth / (1.0 + z);
-  const double dphi_dz = std::abs(z) < 1e-4
-                             ? (r - 1.0) * (0.5 + z * ((r - 2.0) / 3.0 + z * (r - 2.0) * (r - 3.0) / 8.0))
-                             : (dgrowth_dz * z - (growth - 1.0)) / (r * z * z);
+  const double dphi_dz =
+      std::abs(z) < 1e-4  // the series of elastic_growth, differentiated
+          ? (r - 1.0) * (0.5 + z * ((r - 2.0) / 3.0 + z * (r - 2.0) * (r - 3.0) / 8.0))
+          : (dgrowth_dz * z - (growth - 1.0)) / (r * z * z);
   // Differentials w.r.t. (p0, u0, w) of the scalars; p1 = p0 growth.
   const double dz_dp0 = -x * z / p0, dz_du0 = beta * w * dpsi_du0,
                dz_dw = beta * (psi + w * dpsi_dw);

@@ -10,9 +10,8 @@ extern "C" int reference_parameters(const char* parameter_file, double* paramete
                                     char* message, int message_size) {
   try {
     const calibration::Parameters<double> p = calibration::read_parameters_json(parameter_file);
-    const double values[15] = {p.G0, p.nu,  p.M_c, p.c,  p.e_gamma, p.lambda_c, p.xi, p.m,
-                               p.h0, p.c_h, p.n_b, p.A0, p.n_d,     p.e_A,      p.k_F};
-    for (int i = 0; i < 15; ++i) parameters[i] = values[i];
+    int i = 0;
+    for (const auto& field : calibration::kParameterFields<double>) parameters[i++] = p.*field.member;
     return 0;
   } catch (const std::exception& e) {
     std::snprintf(message, static_cast<size_t>(message_size), "%s", e.what());
@@ -24,9 +23,9 @@ extern "C" int reference_drained_triaxial(const double* parameters, double p0, d
                                           double f, double axial_strain_end, int increments,
                                           double* q, double* volumetric_strain) {
   const double* v = parameters;
-  const calibration::Parameters<double> par{v[0], v[1], v[2],  v[3],  v[4],  v[5],  v[6], v[7],
-                                            v[8], v[9], v[10], v[11], v[12], v[13], v[14],
-                                            0.0, 0.5 /* n_b_loose, n_G: NPROPS = 22 */};
+  calibration::Parameters<double> par;
+  int k = 0;
+  for (const auto& field : calibration::kParameterFields<double>) par.*field.member = v[k++];
   calibration::DriverOptions options;
   options.integration = calibration::IntegrationOptions();  // what the UMAT entry integrates with
   options.stress_tolerance = 1e-12;

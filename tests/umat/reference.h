@@ -7,7 +7,7 @@
 extern "C" {
 #endif
 
-/* The 15 ACST parameters of a parameter file, in the order of calibration/umat.h (PROPS 8..22).
+/* The 17 ACST parameters of a parameter file, in the order of calibration/umat.h (PROPS 8..24).
  * Returns 0, or -1 with the reason in message (of length message_size). */
 int reference_parameters(const char* parameter_file, double* parameters, char* message,
                          int message_size);

@@ -37,7 +37,7 @@ static const double kFabric = 0.3;  /* model fabric norm, along the z axis */
 /* One integration point: what Abaqus keeps between increments. */
 typedef struct {
   int ntens, nprops;
-  double stress[6], statev[SFFCAL_UMAT_NSTATV], stran[6], props[SFFCAL_UMAT_NPROPS_ALL];
+  double stress[6], statev[SFFCAL_UMAT_NSTATV], stran[6], props[SFFCAL_UMAT_NPROPS_MAX];
 } Point;
 
 static Point make_point(const double* parameters, int ntens, int nprops) {
@@ -51,7 +51,8 @@ static Point make_point(const double* parameters, int ntens, int nprops) {
   pt.props[SFFCAL_UMAT_PROP_FABRIC + 0] = -k;
   pt.props[SFFCAL_UMAT_PROP_FABRIC + 1] = -k;
   pt.props[SFFCAL_UMAT_PROP_FABRIC + 2] = 2.0 * k;
-  for (int i = 0; i < 15; ++i) pt.props[SFFCAL_UMAT_PROP_PARAMETERS + i] = parameters[i];
+  for (int i = SFFCAL_UMAT_PROP_PARAMETERS; i < nprops; ++i)
+    pt.props[i] = parameters[i - SFFCAL_UMAT_PROP_PARAMETERS];
   return pt;
 }
 
@@ -160,6 +161,34 @@ static void drained_path_matches_driver(const double* parameters) {
   for (int n = 0; n < kIncrements; ++n) four_error = fmax(four_error, fabs(q4[n] - q[n]) / q[n]);
   check(four_error <= 1e-12, "NTENS = 4 gives the NTENS = 6 path, relative q difference",
         four_error);
+
+  /* PROPS(23..24), n_b_loose and n_G: at the values NPROPS = 22 stands for, the same path; at
+   * others, the driver's path with them. */
+  Point all = make_point(parameters, 6, SFFCAL_UMAT_NPROPS_MAX);
+  umat_drained_triaxial(&all, kAxialStrainEnd, kIncrements, q4, ev4);
+  same = 1;
+  for (int n = 0; n < kIncrements; ++n) same = same && q4[n] == q[n] && ev4[n] == ev[n];
+  check(same, "NPROPS = 24 with n_b_loose = 0, n_G = 1/2 gives the NPROPS = 22 path", 0.0);
+  double ours[SFFCAL_UMAT_NPROPS_MAX - SFFCAL_UMAT_PROP_PARAMETERS];
+  for (int i = 0; i < SFFCAL_UMAT_NPROPS_MAX - SFFCAL_UMAT_PROP_PARAMETERS; ++i)
+    ours[i] = parameters[i];
+  ours[15] = 2.0; /* n_b_loose */
+  ours[16] = 0.3; /* n_G */
+  if (reference_drained_triaxial(ours, kP0, kE0, kFabric, kAxialStrainEnd, kIncrements, q_ref,
+                                 ev_ref) != 0) {
+    check(0, "the reference driver path with n_b_loose and n_G converges", 0.0);
+    return;
+  }
+  Point with_ours = make_point(ours, 6, SFFCAL_UMAT_NPROPS_MAX);
+  umat_drained_triaxial(&with_ours, kAxialStrainEnd, kIncrements, q4, ev4);
+  double ours_error = 0.0, moved = 0.0; /* moved: from the path at the defaults */
+  for (int n = 0; n < kIncrements; ++n) {
+    ours_error = fmax(ours_error, fabs(q4[n] - q_ref[n]) / fabs(q_ref[n]));
+    moved = fmax(moved, fabs(q4[n] - q[n]));
+  }
+  check(ours_error <= 1e-8 && moved > 1e-2 * kP0,
+        "n_b_loose, n_G in PROPS(23..24): the driver's path (and not the defaults'), relative q",
+        ours_error);
 }
 
 /* DDSDDE against centred differences of STRESS in DSTRAN (engineering shear), at a plastic
@@ -262,7 +291,7 @@ int main(int argc, char** argv) {
     fprintf(stderr, "usage: %s <ACST parameter file>\n", argv[0]);
     return 2;
   }
-  double parameters[15];
+  double parameters[SFFCAL_UMAT_NPROPS_MAX - SFFCAL_UMAT_PROP_PARAMETERS];
   char message[512];
   if (reference_parameters(argv[1], parameters, message, sizeof message) != 0) {
     fprintf(stderr, "%s\n", message);

@@ -73,8 +73,9 @@ struct ParameterField {
   constexpr bool required() const { return value_if_absent != value_if_absent; }  // NaN: none
 };
 
-/// The parameters in the order of acst-model.md, then n_b_loose and n_G (ours): the one list that the
-/// parameter file, its validation, the fit vector, the fit's bounds and tables and docs/model.md's table follow.
+/// The parameters in the order of acst-model.md, then n_b_loose and n_G (ours): the one list
+/// that the parameter file, its validation, the fit vector, the fit's bounds and tables and
+/// docs/model.md's table follow.
 template <typename T>
 inline constexpr std::array<ParameterField<T>, 17> kParameterFields = {{
     {"G0", &Parameters<T>::G0, "1", {0.0, detail::kUnbounded, false, false}, 5.0, 3000.0},

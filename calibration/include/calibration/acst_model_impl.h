@@ -124,7 +124,8 @@ template <typename T>
 void elastic_moduli(const Parameters<T>& par, const T& p, const T& e, T& G, T& K) {
   // Eq. (1), DM04 Eq. (5) with the pressure exponent n_G (DM04: 1/2): hypoelastic moduli.
   const T a = kElasticVoidLimit - e;
-  G = par.G0 * kAtmosphericPressure * a * a / (1.0 + e) * power(T(p / kAtmosphericPressure), par.n_G);
+  G = par.G0 * kAtmosphericPressure * a * a / (1.0 + e) *
+      power(T(p / kAtmosphericPressure), par.n_G);
   K = G * 2.0 * (1.0 + par.nu) / (3.0 * (1.0 - 2.0 * par.nu));
 }
 

@@ -54,7 +54,8 @@ enum {
   SFFCAL_UMAT_PROP_FABRIC = 1,
   SFFCAL_UMAT_PROP_PARAMETERS = 7,
   SFFCAL_UMAT_NPROPS_STATE = 7,
-  SFFCAL_UMAT_NPROPS_ALL = 22
+  SFFCAL_UMAT_NPROPS_ALL = 22,  /* the 15 parameters of the first version */
+  SFFCAL_UMAT_NPROPS_MAX = 24   /* and n_b_loose, n_G */
 };
 
 void sffcal_umat(double* stress, double* statev, double* ddsdde, double* sse, double* spd,
