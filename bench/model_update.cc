@@ -10,6 +10,9 @@
 //   crossing   the isotropic specimen, first loading by the same 5e-4 increment: the elastic
 //              part in the cone, the crossing, then plastic.
 //
+// BM_UpdateWithTangentElasticExponent: the implicit FE default at n_G = 0.5 (DM04's exponent,
+// square roots), 0.3 and 0.1 (pow, log1p and expm1 in the elastic path), the same 5e-4 cases.
+//
 //   model_update --benchmark_repetitions=10 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -105,8 +108,30 @@ void cases(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMicrosecond);
 }
 
+// {n_G in 1e-2, state}: the implicit FE default with the tangent, increment 5e-4.
+void BM_UpdateWithTangentElasticExponent(benchmark::State& bench) {
+  calibration::Parameters<double> par = toyoura();
+  par.n_G = 1e-2 * static_cast<double>(bench.range(0));
+  const State<double> start = bench.range(1) == 0 ? plastic() : isotropic();
+  const Tensor<double> deps = increment(5e-4);
+  State<double> end;
+  Eigen::Matrix<double, 9, 9> tangent;
+  for (auto _ : bench) {
+    const calibration::UpdateStatus status =
+        calibration::update_with_tangent(par, start, deps, end, tangent, IntegrationOptions());
+    benchmark::DoNotOptimize(status);
+    benchmark::DoNotOptimize(end.stress.data());
+    benchmark::DoNotOptimize(tangent.data());
+  }
+  bench.SetLabel(std::string("n_G ") + std::to_string(par.n_G).substr(0, 4) +
+                 (bench.range(1) == 0 ? " plastic" : " crossing"));
+}
+
 BENCHMARK(BM_Update)->Apply(cases);
 BENCHMARK(BM_UpdateWithTangent)->Apply(cases);
+BENCHMARK(BM_UpdateWithTangentElasticExponent)
+    ->ArgsProduct({{50, 30, 10}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
