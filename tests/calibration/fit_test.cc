@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <random>
 #include <string>
 
@@ -29,6 +30,23 @@ using testing::scientific;
 
 using testing::synthetic_test;
 
+// Every named parameter free, inside its bounds, with a standard error, and within 3 standard
+// errors of the truth (a 99.7 % interval per parameter); the fits are recorded.
+void expect_fitted_back(const CalibrationResult& r, const FitVector& truth,
+                        std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    const int i = fit_parameter_index(name);
+    const ParameterEstimate& e = r.estimates[i];
+    ::testing::Test::RecordProperty(std::string(name) + "_fit", scientific(e.value));
+    ::testing::Test::RecordProperty(std::string(name) + "_se", scientific(e.standard_error));
+    EXPECT_FALSE(e.fixed) << name;
+    EXPECT_FALSE(e.at_bound) << name;
+    ASSERT_GT(e.standard_error, 0.0) << name;
+    EXPECT_LT(std::abs(e.value - truth[i]), 3.0 * e.standard_error)
+        << name << ": fitted " << e.value << " +- " << e.standard_error << ", truth " << truth[i];
+  }
+}
+
 TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
   FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
   truth[fit_parameter_index("h0")] = 5.0;
@@ -44,9 +62,10 @@ TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
   // Free: M_c, h0, n_b, A0, n_d, k_F (the others are fixed at the truth).
   options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs",
                    "n_b_loose", "n_G"};
-  const char* free[] = {"M_c", "h0", "n_b", "A0", "n_d", "k_F"};
+  const std::initializer_list<const char*> free = {"M_c", "h0", "n_b", "A0", "n_d", "k_F"};
   const double distant[] = {1.5, 2.5, 2.0, 0.5, 2.0, 0.4};  // start = truth x factor
-  for (int j = 0; j < 6; ++j) options.initial[fit_parameter_index(free[j])] *= distant[j];
+  int j = 0;
+  for (const char* name : free) options.initial[fit_parameter_index(name)] *= distant[j++];
   const CalibrationResult r = calibrate(tests, options);
   ASSERT_EQ(r.stages.size(), 1u);
   EXPECT_LT(r.stages[0].final_cost, 1e-2 * r.stages[0].initial_cost);
@@ -54,18 +73,7 @@ TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
   RecordProperty("s2", scientific(r.covariance_scale));
   EXPECT_GT(r.covariance_scale, 0.02);
   EXPECT_LT(r.covariance_scale, 0.08);
-  for (const char* name : free) {
-    const int i = fit_parameter_index(name);
-    const ParameterEstimate& e = r.estimates[i];
-    RecordProperty(std::string(name) + "_fit", scientific(e.value));
-    RecordProperty(std::string(name) + "_se", scientific(e.standard_error));
-    EXPECT_FALSE(e.fixed) << name;
-    EXPECT_FALSE(e.at_bound) << name;
-    ASSERT_GT(e.standard_error, 0.0) << name;
-    // Within 3 standard errors of the truth (a 99.7 % interval per parameter).
-    EXPECT_LT(std::abs(e.value - truth[i]), 3.0 * e.standard_error)
-        << name << ": fitted " << e.value << " +- " << e.standard_error << ", truth " << truth[i];
-  }
+  expect_fitted_back(r, truth, free);
 }
 
 // n_b_loose acts where psi > 0 only: fitted back from a test that starts looser than the
@@ -86,15 +94,7 @@ TEST(FitIdentifiability, TheLooseSlopeIsFittedBackOnlyWhereATestStartsLoose) {
   options.initial[fit_parameter_index("n_b")] = 2.0;
   options.initial[fit_parameter_index("n_b_loose")] = 0.0;  // DM04's one slope
   const CalibrationResult r = calibrate({dense, loose}, options);
-  for (const char* name : {"h0", "n_b", "n_b_loose"}) {
-    const int i = fit_parameter_index(name);
-    const ParameterEstimate& e = r.estimates[i];
-    RecordProperty(std::string(name) + "_fit", scientific(e.value));
-    RecordProperty(std::string(name) + "_se", scientific(e.standard_error));
-    ASSERT_GT(e.standard_error, 0.0) << name;
-    EXPECT_LT(std::abs(e.value - truth[i]), 3.0 * e.standard_error)
-        << name << ": fitted " << e.value << " +- " << e.standard_error << ", truth " << truth[i];
-  }
+  expect_fitted_back(r, truth, {"h0", "n_b", "n_b_loose"});
   // The dense test alone: n_b_loose stays where it started, and the notes say why.
   const CalibrationResult d = calibrate({dense}, options);
   EXPECT_EQ(d.values[fit_parameter_index("n_b_loose")], 0.0);
@@ -122,15 +122,7 @@ TEST(FitIdentifiability, TheElasticExponentIsFittedBack) {
   options.initial[fit_parameter_index("G0")] = 80.0;
   options.initial[fit_parameter_index("n_G")] = 0.5;
   const CalibrationResult r = calibrate(tests, options);
-  for (const char* name : {"G0", "h0", "n_G"}) {
-    const int i = fit_parameter_index(name);
-    const ParameterEstimate& e = r.estimates[i];
-    RecordProperty(std::string(name) + "_fit", scientific(e.value));
-    RecordProperty(std::string(name) + "_se", scientific(e.standard_error));
-    ASSERT_GT(e.standard_error, 0.0) << name;
-    EXPECT_LT(std::abs(e.value - truth[i]), 3.0 * e.standard_error)
-        << name << ": fitted " << e.value << " +- " << e.standard_error << ", truth " << truth[i];
-  }
+  expect_fitted_back(r, truth, {"G0", "h0", "n_G"});
 }
 
 TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {

@@ -91,25 +91,25 @@ TEST(ParametersJson, RoundTripIsExact) {
 // n_b_loose and n_G came after the first parameter files: a file without them is the model it
 // was written for (n_b_loose = 0, n_G = 1/2); given, they are read and checked like the others.
 TEST(ParametersJson, ParametersAddedLaterMayBeAbsentAndAreReadWhereGiven) {
-  const std::string path = temp_path("loose_slope");
-  write_text(path, valid_text());
-  EXPECT_EQ(read_parameters_json(path).n_b_loose, 0.0);
-  EXPECT_EQ(read_parameters_json(path).n_G, 0.5);
-  std::string text = valid_text();
-  text.insert(text.rfind("}}"), ", \"n_b_loose\": {\"value\": 7.5, \"unit\": \"1\"}");
-  write_text(path, text);
-  EXPECT_EQ(read_parameters_json(path).n_b_loose, 7.5);
-  text = valid_text();
-  text.insert(text.rfind("}}"), ", \"n_b_loose\": {\"value\": -1, \"unit\": \"1\"}");
-  const std::string negative = read_error(text);
+  const std::string path = temp_path("added_later");
+  // The valid file with one more entry {"value": value, "unit": "1"}.
+  auto with = [](const std::string& name, const std::string& value) {
+    std::string text = valid_text();
+    text.insert(text.rfind("}}"),
+                ", \"" + name + "\": {\"value\": " + value + ", \"unit\": \"1\"}");
+    return text;
+  };
+  auto read = [&](const std::string& text) {
+    write_text(path, text);
+    return read_parameters_json(path);
+  };
+  EXPECT_EQ(read(valid_text()).n_b_loose, 0.0);
+  EXPECT_EQ(read(valid_text()).n_G, 0.5);
+  EXPECT_EQ(read(with("n_b_loose", "7.5")).n_b_loose, 7.5);
+  EXPECT_EQ(read(with("n_G", "0.25")).n_G, 0.25);
+  const std::string negative = read_error(with("n_b_loose", "-1"));
   EXPECT_NE(negative.find("'n_b_loose'"), std::string::npos) << negative;
-  text = valid_text();
-  text.insert(text.rfind("}}"), ", \"n_G\": {\"value\": 0.25, \"unit\": \"1\"}");
-  write_text(path, text);
-  EXPECT_EQ(read_parameters_json(path).n_G, 0.25);
-  text = valid_text();
-  text.insert(text.rfind("}}"), ", \"n_G\": {\"value\": 1, \"unit\": \"1\"}");
-  const std::string at_one = read_error(text);
+  const std::string at_one = read_error(with("n_G", "1"));
   EXPECT_NE(at_one.find("'n_G'"), std::string::npos) << at_one;
   std::remove(path.c_str());
 }
