@@ -280,6 +280,7 @@ TEST(ExtremeInputs, SoftGrainsStopWithAMessageNamingTheStiffness) {
     EXPECT_NE(what.find("too soft"), std::string::npos) << what;
     EXPECT_NE(what.find("E / stress"), std::string::npos) << what;
     EXPECT_NE(what.find("bodies "), std::string::npos) << what;
+    EXPECT_NE(what.find("preparation.servo_max_speed"), std::string::npos) << what;
   }
 }
 
