@@ -15,6 +15,9 @@
 #include <cstring>
 #include <memory>
 #include <random>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 
 namespace calibration {
 namespace fit_detail {
@@ -341,23 +344,28 @@ StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Gr
                         const ResidualSpec& spec, const FitVector& x0, const std::vector<int>& free,
                         const FitOptions& options, const FitVector& lower, const FitVector& upper,
                         int starts, std::uint64_t seed, const std::string& stage_name) {
-  // The Jet size follows the number of free parameters (Jet arithmetic costs about its size):
-  // 1 (fabric stage), 6 (plastic), 10 (joint), 11 (joint with c, when an extension test is
-  // fitted), 16 (anything larger).
-  if (free.size() <= 1)
-    return solve_stage_sized<1>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
-                                stage_name);
-  if (free.size() <= 6)
-    return solve_stage_sized<6>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
-                                stage_name);
-  if (free.size() <= 10)
-    return solve_stage_sized<10>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
-                                 stage_name);
-  if (free.size() <= 11)
-    return solve_stage_sized<11>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
-                                 stage_name);
-  return solve_stage_sized<16>(tests, grids, spec, x0, free, options, lower, upper, starts, seed,
-                               stage_name);
+  // The Jet size is the number of free parameters (Jet arithmetic costs about its size, and a
+  // Jacobian evaluation is mostly Jet arithmetic): 1 (fabric stage), 6 or 7 (plastic, 7 with
+  // n_b_loose), 10 to 13 (joint: with c, n_b_loose and n_G where each is identifiable).
+  // Larger stages are not built (each size compiles the whole path integration once more).
+  auto sized = [&](auto size) {
+    return solve_stage_sized<decltype(size)::value>(tests, grids, spec, x0, free, options, lower,
+                                                    upper, starts, seed, stage_name);
+  };
+  switch (free.size()) {
+    case 1: return sized(std::integral_constant<int, 1>());
+    case 2: case 3: case 4: case 5:
+    case 6: return sized(std::integral_constant<int, 6>());
+    case 7: return sized(std::integral_constant<int, 7>());
+    case 8: case 9:
+    case 10: return sized(std::integral_constant<int, 10>());
+    case 11: return sized(std::integral_constant<int, 11>());
+    case 12: return sized(std::integral_constant<int, 12>());
+    case 13: return sized(std::integral_constant<int, 13>());
+    default:
+      throw std::logic_error("solve_stage: " + std::to_string(free.size()) +
+                             " free parameters in stage " + stage_name + " (1 to 13 are built)");
+  }
 }
 
 }  // namespace fit_detail
