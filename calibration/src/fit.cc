@@ -440,6 +440,10 @@ class Calibration {
   std::vector<int> free_of(std::initializer_list<int> wanted) const;
   // One least-squares stage over every test's path, recorded in the result.
   void run_stage(Stage stage, const ResidualSpec& spec, const std::vector<int>& free, int starts);
+  /// Empty where every test of the fit integrates to its last row at the report's integration
+  /// (FitOptions::report_driver), else the first that does not: the fit's own, looser
+  /// integration can pass a set the report then fails on (docs/calibration.md, "Objective").
+  std::string report_integration_refusal(const FitVector& x) const;
   ResidualSpec base_spec() const;
 
   const std::vector<TestData>& tests_;
@@ -710,9 +714,13 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
                       std::to_string(free.size()) + " free parameters, " +
                       std::to_string(residuals) + " residuals, " + std::to_string(starts) +
                       " start(s), " + std::to_string(options_.threads) + " thread(s)");
+  // The stages that move the stress paths keep a set the report can integrate.
+  fit_detail::SetCheck check;
+  if (stage != Stage::kFabric)
+    check = [this](const FitVector& x) { return report_integration_refusal(x); };
   const fit_detail::StageResult r =
       fit_detail::solve_stage(tests_, grids_, spec, x_, free, options_, lower_, upper_, starts,
-                              stage_seed_++ * 7919, to_string(stage));
+                              stage_seed_++ * 7919, to_string(stage), check);
   report.timing = r.timing;
   if (options_.progress) {
     char line[320];
@@ -732,6 +740,10 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
   report.final_cost = r.final_cost;
   report.message = r.message;
   result_.stages.push_back(report);
+  if (!r.note.empty()) {
+    result_.notes.push_back(std::string("stage ") + to_string(stage) + ": " + r.note);
+    if (options_.progress) options_.progress(result_.notes.back());
+  }
   if (!std::isfinite(r.final_cost))
     throw std::runtime_error(std::string("calibrate: stage '") + to_string(stage) +
                              "' found no usable solution from any start: " + r.message);
@@ -753,6 +765,24 @@ void Calibration::run_stage(Stage stage, const ResidualSpec& spec, const std::ve
     result_.notes.push_back(prefix +
                             "covariance not available (rank deficient or too few residuals)");
   }
+}
+
+std::string Calibration::report_integration_refusal(const FitVector& x) const {
+  const int n = static_cast<int>(tests_.size());
+  std::vector<std::string> refusal(tests_.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, options_.threads))
+  for (int t = 0; t < n; ++t) {
+    const TestData& test = tests_[static_cast<std::size_t>(t)];
+    const ModelCurves c =
+        simulate_test(test, x, options_.report_driver, options_.report_max_strain_step);
+    if (c.rows_reached < static_cast<int>(c.axial_strain.size()))
+      refusal[static_cast<std::size_t>(t)] =
+          test.name + " fails at the report's integration after " +
+          std::to_string(c.rows_reached) + " of " + std::to_string(c.axial_strain.size()) + " rows";
+  }
+  for (const std::string& r : refusal)
+    if (!r.empty()) return r;
+  return {};
 }
 
 void Calibration::fit_fabric() {

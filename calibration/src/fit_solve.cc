@@ -15,6 +15,7 @@
 #include <cstring>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -177,6 +178,27 @@ class ProgressCallback final : public ceres::IterationCallback {
   Clock::time_point stage_start_;
 };
 
+/// Keeps the parameter block at the start and after every accepted step, with its cost (needs
+/// Solver::Options::update_state_every_iteration, so that the block holds the iterate).
+template <int S>
+class IterateRecorder final : public ceres::IterationCallback {
+ public:
+  struct Iterate {
+    std::array<double, S> x;
+    double cost;
+    int iteration;
+  };
+  explicit IterateRecorder(const std::array<double, S>& block) : block_(block) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    if (s.iteration == 0 || s.step_is_successful) iterates.push_back({block_, s.cost, s.iteration});
+    return ceres::SOLVER_CONTINUE;
+  }
+  std::vector<Iterate> iterates;
+
+ private:
+  const std::array<double, S>& block_;
+};
+
 std::unique_ptr<ceres::LossFunction> make_loss(Loss loss, double scale) {
   switch (loss) {
     case Loss::kHuber:
@@ -189,18 +211,58 @@ std::unique_ptr<ceres::LossFunction> make_loss(Loss loss, double scale) {
   return nullptr;
 }
 
+/// The full fit vector of x0 with the free parameters set from a block.
+template <int S>
+FitVector with_block(const FitVector& x0, const std::vector<int>& free,
+                     const std::array<double, S>& block) {
+  FitVector x = x0;
+  for (std::size_t j = 0; j < free.size(); ++j) x[free[j]] = block[j];
+  return x;
+}
+
+/// solve_stage's check of a start's end point: where the check refuses it, the newest recorded
+/// iterate it accepts (going back 1, 2, 4, ... accepted steps, then the start) replaces block and
+/// cost. False where neither the end point nor any of those is accepted.
+template <int S>
+bool check_end_point(const SetCheck& check, const FitVector& x0, const std::vector<int>& free,
+                     const std::vector<typename IterateRecorder<S>::Iterate>& iterates,
+                     std::array<double, S>& block, double& cost, const std::string& where,
+                     std::string& note) {
+  const std::string refused = check(with_block<S>(x0, free, block));
+  if (refused.empty()) return true;
+  std::ostringstream text;
+  text << where << ": its end point (cost " << cost << ") was refused (" << refused << "); ";
+  const int last = static_cast<int>(iterates.size()) - 1;
+  for (int back = 1; last - back >= 0; back = last - 2 * back > 0 ? 2 * back : last) {
+    const auto& earlier = iterates[static_cast<std::size_t>(last - back)];
+    if (check(with_block<S>(x0, free, earlier.x)).empty()) {
+      text << "kept iteration " << earlier.iteration << " instead (cost " << earlier.cost << ")";
+      block = earlier.x;
+      cost = earlier.cost;
+      note = text.str();
+      return true;
+    }
+    if (back == last) break;  // the start point was the last candidate
+  }
+  text << "no earlier iterate was accepted either";
+  note = text.str();
+  return false;
+}
+
 template <int S>
 StageResult solve_stage_sized(const std::vector<TestData>& tests, const std::vector<Grid>& grids,
                               const ResidualSpec& spec, const FitVector& x0,
                               const std::vector<int>& free, const FitOptions& options,
                               const FitVector& lower, const FitVector& upper, int starts,
-                              std::uint64_t seed, const std::string& stage_name) {
+                              std::uint64_t seed, const std::string& stage_name,
+                              const SetCheck& check) {
   const auto stage_start = Clock::now();
   const std::clock_t cpu_start = std::clock();
   StageResult best;
   best.x = x0;
   const int k = static_cast<int>(free.size());
   std::mt19937_64 random(seed);
+  bool best_accepted = false;  // by check; no best yet counts as refused
   double substep_sum = 0.0;
   int evaluations = 0;
   for (int start = 0; start < starts; ++start) {
@@ -260,6 +322,11 @@ StageResult solve_stage_sized(const std::vector<TestData>& tests, const std::vec
     solver.minimizer_progress_to_stdout = options.verbose;
     solver.logging_type = options.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
     solver.callbacks.push_back(&progress);
+    IterateRecorder<S> recorder(block);
+    if (check) {
+      solver.update_state_every_iteration = true;  // copies only: the iterates are unchanged
+      solver.callbacks.push_back(&recorder);
+    }
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
     ++best.starts_run;
@@ -267,8 +334,18 @@ StageResult solve_stage_sized(const std::vector<TestData>& tests, const std::vec
     const bool usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost) &&
                         summary.initial_cost > 0.0;
     if (start == 0) best.initial_cost = summary.initial_cost;
-    if (usable && summary.final_cost < best.final_cost) {
-      best.final_cost = summary.final_cost;
+    double final_cost = summary.final_cost;
+    std::string start_note;
+    // A start the check accepts beats one it refuses, whatever their costs.
+    bool accepted = true;
+    if (usable && check && (final_cost < best.final_cost || !best_accepted))
+      accepted = check_end_point<S>(check, x0, free, recorder.iterates, block, final_cost,
+                                    stage_name + " start " + std::to_string(start + 1), start_note);
+    const bool better = accepted != best_accepted ? accepted : final_cost < best.final_cost;
+    if (usable && better) {
+      best_accepted = accepted;
+      best.final_cost = final_cost;
+      best.note = start_note;
       best.residuals = residuals;
       for (int j = 0; j < k; ++j) best.x[free[j]] = block[j];
       best.message = summary.BriefReport();
@@ -343,14 +420,15 @@ StageResult solve_stage_sized(const std::vector<TestData>& tests, const std::vec
 StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Grid>& grids,
                         const ResidualSpec& spec, const FitVector& x0, const std::vector<int>& free,
                         const FitOptions& options, const FitVector& lower, const FitVector& upper,
-                        int starts, std::uint64_t seed, const std::string& stage_name) {
+                        int starts, std::uint64_t seed, const std::string& stage_name,
+                        const SetCheck& check) {
   // The Jet size is the number of free parameters (Jet arithmetic costs about its size, and a
   // Jacobian evaluation is mostly Jet arithmetic): 1 (fabric stage), 6 or 7 (plastic, 7 with
   // n_b_loose), 10 to 13 (joint: with c, n_b_loose and n_G where each is identifiable).
   // Larger stages are not built (each size compiles the whole path integration once more).
   auto sized = [&](auto size) {
     return solve_stage_sized<decltype(size)::value>(tests, grids, spec, x0, free, options, lower,
-                                                    upper, starts, seed, stage_name);
+                                                    upper, starts, seed, stage_name, check);
   };
   switch (free.size()) {
     case 1: return sized(std::integral_constant<int, 1>());

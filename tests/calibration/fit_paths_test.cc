@@ -12,6 +12,7 @@
 
 #include "calibration/fit.h"
 #include "fit_path.h"
+#include "fit_solve.h"
 #include "synthetic_test.h"
 #include "toyoura.h"
 
@@ -181,6 +182,52 @@ TEST(FitPaths, CAndTheUndrainedResponseAreFittedBackFromModelData) {
   bool said = false;
   for (const std::string& note : compression_only.notes) said = said || note.find("c held") == 0;
   EXPECT_TRUE(said);
+}
+
+// solve_stage's check (the fit keeps a set the report can integrate): an end point the check
+// refuses gives way to the newest earlier iterate it accepts; a check that accepts everything
+// changes nothing, bit for bit; one that refuses everything keeps the end point and says so.
+TEST(FitStageCheck, ARefusedEndPointGivesWayToTheNewestAcceptedIterate) {
+  const FitVector truth = toyoura_vector();
+  const int h0 = fit_parameter_index("h0");
+  const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 5)};
+  FitOptions options;
+  const std::vector<fit_detail::Grid> grids = {
+      fit_detail::make_grid(tests[0], options.max_points, options.fit_max_strain_step)};
+  FitVector start = truth;
+  start[h0] = 3.0 * truth[h0];
+  auto solve = [&](const fit_detail::SetCheck& check) {
+    return fit_detail::solve_stage(tests, grids, fit_detail::ResidualSpec(), start, {h0}, options,
+                                   options.lower, options.upper, 1, 1, "check", check);
+  };
+  const fit_detail::StageResult plain = solve({});
+  ASSERT_TRUE(std::isfinite(plain.final_cost));
+  ASSERT_LT(std::abs(plain.x[h0] / truth[h0] - 1.0), 0.05);  // fitted back near the truth
+
+  const fit_detail::StageResult all = solve([](const FitVector&) { return std::string(); });
+  EXPECT_EQ(all.x, plain.x);
+  EXPECT_EQ(all.final_cost, plain.final_cost);
+  EXPECT_TRUE(all.note.empty()) << all.note;
+
+  // Refuse the neighbourhood of the truth, where the fit ends.
+  int calls = 0;
+  auto near_truth = [&](const FitVector& x) {
+    ++calls;
+    return std::abs(x[h0] / truth[h0] - 1.0) < 0.1 ? std::string("near the truth") : std::string();
+  };
+  const fit_detail::StageResult guarded = solve(near_truth);
+  EXPECT_GE(std::abs(guarded.x[h0] / truth[h0] - 1.0), 0.1);
+  EXPECT_GT(guarded.final_cost, plain.final_cost);
+  EXPECT_NE(guarded.note.find("refused (near the truth)"), std::string::npos) << guarded.note;
+  EXPECT_NE(guarded.note.find("kept iteration"), std::string::npos) << guarded.note;
+  EXPECT_LE(calls, 8);  // going back 1, 2, 4, ... iterations, not one by one
+  ::testing::Test::RecordProperty("h0_guarded_over_truth", scientific(guarded.x[h0] / truth[h0]));
+  ::testing::Test::RecordProperty("checks", calls);
+
+  const fit_detail::StageResult none =
+      solve([](const FitVector&) { return std::string("never"); });
+  EXPECT_EQ(none.x, plain.x);
+  EXPECT_NE(none.note.find("no earlier iterate was accepted"), std::string::npos) << none.note;
 }
 
 }  // namespace
