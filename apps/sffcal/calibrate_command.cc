@@ -24,6 +24,7 @@ int calibrate_command(const std::vector<std::string>& run_paths,
   fit.fit_max_strain_step = options.max_strain_step;
   fit.verbose = options.verbose;
   fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  for (const std::string& range : options.ranges) calibration::set_search_range(fit, range);
   const auto begin = std::chrono::steady_clock::now();
   fit.progress = [begin](const std::string& line) {
     const double t =
@@ -74,6 +75,9 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
                   "run files (with /analysis/sff) predicted with the fitted parameters but not "
                   "fitted; their errors and curves are written with the others")
       ->check(CLI::ExistingFile);
+  calibrate.add_option("--range", options.ranges,
+                       "NAME=LOW:HIGH: the fit's search range of a parameter instead of the "
+                       "default (docs/calibration.md, \"Bounds\"), e.g. n_d=0:60; repeatable");
 }
 
 }  // namespace sffcal

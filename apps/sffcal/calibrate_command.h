@@ -26,9 +26,11 @@ struct CalibrateCommandOptions {
   /// else all cores).
   int threads = 0;
   std::vector<std::string> held_out;  ///< run files predicted with the fitted values, not fitted
+  /// NAME=LOW:HIGH search ranges replacing the defaults (calibration::set_search_range).
+  std::vector<std::string> ranges;
 };
 
-/// Adds the options added for issue 5 (--threads, --hold-out) to the calibrate subcommand.
+/// Adds --threads, --hold-out and --range to the calibrate subcommand.
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options);
 
 /// Reads the run files (each needs /analysis/sff), calibrates (printing a progress line per stage

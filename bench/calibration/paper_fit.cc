@@ -2,7 +2,7 @@
 // their committed reduced CSV pairs, bench/reference/<name>_series.csv and <name>_sff.csv (the
 // full run files are not committed; `sffcal calibrate` reads run files).
 //
-// usage: paper_fit FITTED... [--hold-out HELD...] [--threads N]
+// usage: paper_fit FITTED... [--hold-out HELD...] [--threads N] [--range NAME=LOW:HIGH ...]
 //   e.g. build/bench/paper_fit dense_100kPa loose_200kPa --hold-out dense_300kPa
 // Prints the summary of `sffcal calibrate` (errors per test, parameters, stages).
 #include <cmath>
@@ -17,7 +17,7 @@
 
 int main(int argc, char** argv) {
   try {
-    std::vector<std::string> fitted, held;
+    std::vector<std::string> fitted, held, ranges;
     int threads = 2;
     bool holding = false;
     for (int k = 1; k < argc; ++k) {
@@ -26,12 +26,15 @@ int main(int argc, char** argv) {
         holding = true;
       } else if (a == "--threads" && k + 1 < argc) {
         threads = std::atoi(argv[++k]);
+      } else if (a == "--range" && k + 1 < argc) {
+        ranges.push_back(argv[++k]);
       } else {
         (holding ? held : fitted).push_back(a);
       }
     }
     if (fitted.empty()) {
-      std::fprintf(stderr, "usage: paper_fit FITTED... [--hold-out HELD...] [--threads N]\n");
+      std::fprintf(stderr, "usage: paper_fit FITTED... [--hold-out HELD...] [--threads N] "
+                           "[--range NAME=LOW:HIGH ...]\n");
       return 2;
     }
     const std::string folder = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
@@ -45,6 +48,7 @@ int main(int argc, char** argv) {
     };
     calibration::FitOptions options;
     options.threads = threads;
+    for (const std::string& range : ranges) calibration::set_search_range(options, range);
     calibration::CalibrationResult result = calibration::calibrate(read(fitted), options);
     calibration::predict(read(held), options, result);
     std::printf("%s", calibration::summary_markdown(result).c_str());

@@ -74,6 +74,46 @@ int fit_parameter_index(const std::string& name) {
   throw std::runtime_error("unknown parameter '" + name + "'");
 }
 
+void set_search_range(FitOptions& options, const std::string& range) {
+  const std::string usage = "--range '" + range + "': ";
+  const std::size_t equals = range.find('='), colon = range.find(':', equals);
+  if (equals == std::string::npos || colon == std::string::npos)
+    throw std::runtime_error(usage + "expected NAME=LOW:HIGH, e.g. n_d=0:60");
+  int i = 0;
+  try {
+    i = fit_parameter_index(range.substr(0, equals));
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(usage + e.what());
+  }
+  auto number = [&](const std::string& text) {
+    std::size_t used = 0;
+    double x = std::numeric_limits<double>::quiet_NaN();
+    try {
+      x = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != text.size() || !std::isfinite(x))
+      throw std::runtime_error(usage + "'" + text + "' is not a finite number");
+    return x;
+  };
+  const double low = number(range.substr(equals + 1, colon - equals - 1));
+  const double high = number(range.substr(colon + 1));
+  if (!(low < high)) throw std::runtime_error(usage + "LOW must be below HIGH");
+  for (double x : {low, high}) {
+    const bool physical =
+        i == kAcsIndex ? x > 0.0 : kParameterFields<double>[i].physical.contains(x);
+    if (!physical)
+      throw std::runtime_error(usage + std::to_string(x) + " is not physical for '" + kNames[i] +
+                               "': it must be " +
+                               (i == kAcsIndex ? std::string("> 0")
+                                               : kParameterFields<double>[i].physical.describe()));
+  }
+  options.lower[i] = low;
+  options.upper[i] = high;
+  options.initial[i] = std::clamp(options.initial[i], low, high);
+}
+
 FitVector to_fit_vector(const Parameters<double>& p, double a_cs) {
   FitVector x{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)

@@ -365,6 +365,30 @@ TEST(FitInputs, BadDataGiveClearErrors) {
   expect_error([] { parse_loss("l1"); }, "unknown loss 'l1'");
 }
 
+// `sffcal calibrate --range NAME=LOW:HIGH`: the range replaces the default, the start moves into
+// it, and every malformed or non-physical range is refused by name.
+TEST(FitInputs, SearchRangesAreSetByNameAndBadOnesAreNamed) {
+  FitOptions options;
+  const int n_d = fit_parameter_index("n_d");
+  set_search_range(options, "n_d=0:60");
+  EXPECT_EQ(options.lower[n_d], 0.0);
+  EXPECT_EQ(options.upper[n_d], 60.0);
+  set_search_range(options, "n_d=5:10");  // the default start, 3.5, lies below
+  EXPECT_EQ(options.initial[n_d], 5.0);
+  set_search_range(options, "a_cs=0.5:1.5");
+  EXPECT_EQ(options.upper[kAcsIndex], 1.5);
+  expect_error([&] { set_search_range(options, "n_d=20"); }, "expected NAME=LOW:HIGH");
+  expect_error([&] { set_search_range(options, "n_x=0:1"); }, "unknown parameter 'n_x'");
+  expect_error([&] { set_search_range(options, "n_d=0:1e3x"); }, "'1e3x' is not a finite number");
+  expect_error([&] { set_search_range(options, "n_d=:1"); }, "'' is not a finite number");
+  expect_error([&] { set_search_range(options, "n_d=0:inf"); }, "'inf' is not a finite number");
+  expect_error([&] { set_search_range(options, "n_d=3:1"); }, "LOW must be below HIGH");
+  expect_error([&] { set_search_range(options, "nu=0:0.6"); },
+               "is not physical for 'nu': it must be in (-1, 0.5)");
+  expect_error([&] { set_search_range(options, "a_cs=0:1"); }, "not physical for 'a_cs'");
+  EXPECT_EQ(options.upper[n_d], 10.0);  // a refused range changes nothing
+}
+
 // A small triaxial run file with the series calibration reads and, when `with_sff`, an SFF table.
 void write_small_run(const std::string& path, const runfile::RunMetadata& meta, bool with_sff) {
   std::filesystem::remove(path);

@@ -159,6 +159,12 @@ struct FitOptions {
   static FitVector default_upper();
 };
 
+/// Sets the fit's search range of one parameter from "NAME=LOW:HIGH" (`sffcal calibrate
+/// --range`): NAME as in the parameter file, or a_cs; LOW < HIGH, both finite and physical for
+/// the parameter (docs/model.md's table; a_cs > 0). The start value is moved into the range
+/// (the stages start from it). Throws std::runtime_error naming what is wrong.
+void set_search_range(FitOptions& options, const std::string& range);
+
 struct ParameterEstimate {
   double value = 0.0, lower = 0.0, upper = 0.0;
   /// From the covariance of the last stage that freed it, robust to residuals correlated along
