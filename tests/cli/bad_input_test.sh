@@ -145,6 +145,10 @@ expect_failure "a parameter file with 1e400 names the file" "overflow.json" \
 sed 's/"value": 125.0/"value": NaN/' "$examples/acst_toyoura.json" > nan.json
 expect_failure "a parameter file with NaN names the file" "nan.json" \
   "$sffcal" fe-check --parameters nan.json --no-mesh -o fe
+expect_failure "calibrate --range beyond a parameter's physical range" \
+  "0.700000 is not physical for 'nu'" "$sffcal" calibrate small.toml -o fit --range nu=0:0.7
+expect_failure "calibrate --range with a name the fit does not know" "unknown parameter 'n_x'" \
+  "$sffcal" calibrate small.toml -o fit --range n_x=0:1
 
 echo "$cases bad inputs, $failures check(s) failed"
 exit $((failures > 0))
