@@ -461,7 +461,7 @@ template <bool kClumps, bool kMoments>
 void Simulation::sum_body_forces() {
   Particles& P = particles_;
   const ContactList& C = contacts_;
-  const int nb = P.num_bodies(), np = C.num_pairs();
+  const int nb = P.num_bodies();
 #pragma omp parallel for schedule(static) if (nb >= options_.min_parallel_items)
   for (int b = 0; b < nb; ++b) {
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
@@ -470,9 +470,11 @@ void Simulation::sum_body_forces() {
       Eigen::Vector3d f_s = Eigen::Vector3d::Zero();
       for (int e = C.incidence_offset[s]; e < C.incidence_offset[s + 1]; ++e) {
         const int code = C.incidence[e], slot = code >> 1;
-        // The list's touching bytes (64 to a cache line) decide before the 64-byte result is
-        // fetched: a candidate of the Verlet list that does not touch costs a byte.
-        if (!(slot < np ? C.pair_touching[slot] : C.wall_touching[slot - np])) continue;
+        // Every candidate is added, touching or not: a slot that does not touch holds zeros
+        // (cleared at the list build and at separation), so the sums are the same bit for bit.
+        // A test of the touching byte here was a branch that half the candidates take, in no
+        // order a predictor follows: dearer than reading the zeros (bench/RESULTS.md, "third
+        // step").
         if (code & 1) f_s += slots_[slot].force;
         else f_s -= slots_[slot].force;
         if constexpr (kMoments) {
