@@ -15,6 +15,8 @@
 #include <initializer_list>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "dem/loading_path.h"
 #include "dem/run_config.h"
@@ -47,6 +49,16 @@ void expect_fitted_back(const CalibrationResult& r, const FitVector& truth,
   }
 }
 
+// The joint stage alone, one start from the truth, with `held` fixed there.
+FitOptions joint_fit_from(const FitVector& truth, std::vector<std::string> held) {
+  FitOptions options;
+  options.stages = {Stage::kJoint};
+  options.starts = 1;
+  options.initial = truth;
+  options.fixed = std::move(held);
+  return options;
+}
+
 TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
   FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
   truth[fit_parameter_index("h0")] = 5.0;
@@ -55,13 +67,9 @@ TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
   // Noise of 0.2 residual scales: q/p +-0.01, eps_v +-0.001, a_c +-0.01.
   const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 11),
                                        synthetic_test("loose", truth, 0.88, 0.1, 0.2, 12)};
-  FitOptions options;
-  options.stages = {Stage::kJoint};
-  options.starts = 1;
-  options.initial = truth;
   // Free: M_c, h0, n_b, A0, n_d, k_F (the others are fixed at the truth).
-  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs",
-                   "n_b_loose", "n_G"};
+  FitOptions options = joint_fit_from(truth, {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma",
+                                              "lambda_c", "xi", "a_cs", "n_b_loose", "n_G"});
   const std::initializer_list<const char*> free = {"M_c", "h0", "n_b", "A0", "n_d", "k_F"};
   const double distant[] = {1.5, 2.5, 2.0, 0.5, 2.0, 0.4};  // start = truth x factor
   int j = 0;
@@ -84,12 +92,9 @@ TEST(FitIdentifiability, TheLooseSlopeIsFittedBackOnlyWhereATestStartsLoose) {
   truth[fit_parameter_index("n_b_loose")] = 6.0;
   const TestData dense = synthetic_test("dense", truth, 0.70, 0.1, 0.2, 31);
   const TestData loose = synthetic_test("loose", truth, 0.95, 0.1, 0.2, 32);
-  FitOptions options;
-  options.stages = {Stage::kJoint};
-  options.starts = 1;
-  options.initial = truth;
-  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs",
-                   "A0", "n_d", "k_F", "M_c", "n_G"};
+  FitOptions options =
+      joint_fit_from(truth, {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi",
+                             "a_cs", "A0", "n_d", "k_F", "M_c", "n_G"});
   options.initial[fit_parameter_index("h0")] = 10.0;
   options.initial[fit_parameter_index("n_b")] = 2.0;
   options.initial[fit_parameter_index("n_b_loose")] = 0.0;  // DM04's one slope
@@ -113,12 +118,9 @@ TEST(FitIdentifiability, TheElasticExponentIsFittedBack) {
       synthetic_test("dense", truth, 0.70, 0.1, 0.2, 41),
       synthetic_test("undrained", truth, 0.80, 0.1, 0.2, 42, TestPath::kUndrainedCompression,
                      0.05)};
-  FitOptions options;
-  options.stages = {Stage::kJoint};
-  options.starts = 1;
-  options.initial = truth;
-  options.fixed = {"nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "A0",
-                   "n_d", "k_F", "M_c", "n_b", "n_b_loose"};
+  FitOptions options =
+      joint_fit_from(truth, {"nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs",
+                             "A0", "n_d", "k_F", "M_c", "n_b", "n_b_loose"});
   options.initial[fit_parameter_index("G0")] = 80.0;
   options.initial[fit_parameter_index("n_G")] = 0.5;
   const CalibrationResult r = calibrate(tests, options);
@@ -129,13 +131,10 @@ TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
   FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
   const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 21),
                                        synthetic_test("loose", truth, 0.88, 0.1, 0.2, 22)};
-  FitOptions options;
-  options.stages = {Stage::kJoint};
-  options.starts = 1;
+  FitOptions options =
+      joint_fit_from(truth, {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi",
+                             "a_cs", "k_F", "n_b_loose", "n_G"});
   options.max_iterations = 6;
-  options.initial = truth;
-  options.fixed = {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "k_F",
-                   "n_b_loose", "n_G"};
   options.initial[fit_parameter_index("h0")] *= 2.0;
   options.initial[fit_parameter_index("n_d")] *= 0.6;
   std::vector<std::string> lines;
