@@ -82,12 +82,6 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
     return -(row - row.dot(n.transpose()) * wn.transpose()) / rho;
   };
 
-  // The fabric eliminated by Eq. (16): F = (F_0 + dlambda k_F n) / (1 + dlambda k_F).
-  const double fabric_denominator = 1.0 + dlambda * par.k_F;
-  const Voigt fabric = (to_voigt(step.start.fabric) + (dlambda * par.k_F) * n) / fabric_denominator;
-  const double fabric_factor = dlambda * par.k_F / fabric_denominator;  // dF/dn at fixed dlambda
-  const Voigt d_fabric_l = (par.k_F / fabric_denominator) * (n - fabric);
-
   // Elastic moduli (Eq. 1) at fixed e.
   const double a = detail::kElasticVoidLimit - e;
   const double G = par.G0 * kAtmosphericPressure * a * a / (1.0 + e) *
@@ -113,14 +107,31 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
   const double g_factor = g * (1.0 - par.c) / g_denominator;
   const Row6 d_g_s = g_factor * d_cos3_s, d_g_a = g_factor * d_cos3_a;
 
-  // State parameters (Eq. 5-6).
+  // State parameter (Eq. 5).
   const double p_ratio = std::pow(p / kAtmosphericPressure, par.xi);
   const double psi = e - (par.e_gamma - par.lambda_c * p_ratio);
   const Row6 d_psi = (par.lambda_c * par.xi * p_ratio / p) * d_p;  // d / d sigma only
+
+  // The fabric eliminated by Eq. (16): F = (F_0 + dlambda k n) / (1 + dlambda k), with the rate
+  // k = k_F exp(-n_F psi) of the end state.
+  const double rate = fabric_rate(par, psi);
+  const double fabric_denominator = 1.0 + dlambda * rate;
+  const Voigt fabric = (to_voigt(step.start.fabric) + (dlambda * rate) * n) / fabric_denominator;
+  const double fabric_factor = dlambda * rate / fabric_denominator;  // dF/dn at fixed dlambda
+  const Voigt d_fabric_l = (rate / fabric_denominator) * (n - fabric);
+  // Through k, F also depends on psi: dF/dpsi = (dlambda / (1 + dlambda k)) (n - F) dk/dpsi,
+  // dk/dpsi = -n_F k (zero for LD12's constant rate, whose terms are then skipped).
+  const bool rate_varies = par.n_F != 0.0;
+  const Voigt d_fabric_psi =
+      (dlambda * (-par.n_F * rate) / fabric_denominator) * (n - fabric);
+
+  // Fabric anisotropy variable (Eq. 6).
   const double A = kWeights.dot(fabric.cwiseProduct(n));
-  // d A = wn . dF + (w F) . dn with dF = fabric_factor dn (+ the dlambda column).
+  // d A = wn . dF + (w F) . dn with dF = fabric_factor dn (+ the dlambda and psi columns).
   const Row6 w_A = fabric_factor * wn.transpose() + kWeights.cwiseProduct(fabric).transpose();
-  const Row6 d_A_s = times_d_n_s(w_A);
+  Row6 d_A_s = times_d_n_s(w_A);
+  const double d_A_psi = wn.dot(d_fabric_psi);
+  if (rate_varies) d_A_s += d_A_psi * d_psi;
   const Row6 d_A_a = times_d_n_a(w_A);
   const double d_A_l = wn.dot(d_fabric_l);
   const double zeta = psi - par.e_A * (A - 1.0);
@@ -198,7 +209,10 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
   const double dM_d_dzeta = par.M_c * exp_d * g * par.n_d;
   const double dD_de = par.A0 * k * dM_d_dzeta;            // d zeta / d e = d psi / d e = 1
   const double dD_dA = -par.A0 * k * dM_d_dzeta * par.e_A;  // d zeta / d A = -e_A
-  d.void_ratio.head<6>() = dlambda * (2.0 * dG_de * n + (dK_de * D + K * dD_de) * kDelta) / step.scale;
+  // d zeta / d e = d psi / d e - e_A dA/de, and A depends on e through the fabric's rate.
+  const double dD_de_total = dD_de + (rate_varies ? dD_dA * d_A_psi : 0.0);
+  d.void_ratio.head<6>() =
+      dlambda * (2.0 * dG_de * n + (dK_de * D + K * dD_de_total) * kDelta) / step.scale;
   d.fabric_start = 1.0 / fabric_denominator;  // dF / dF_0 (times the identity)
   d.fabric = (dlambda * K * dD_dA * d.fabric_start / step.scale) * kDelta;
   const double db0_de = -par.c_h * par.G0 * par.h0 / std::sqrt(p / kAtmosphericPressure);
@@ -211,8 +225,10 @@ bool plastic_derivatives(const Parameters<double>& par, const PlasticStep<double
     d.alpha_in = (-(2.0 / 3.0) * dlambda * h / distance) * back;
   d.n_weighted = wn;
   d.fabric_unknowns.block<6, 6>(0, 0) = fabric_factor * d_n_s;
+  if (rate_varies) d.fabric_unknowns.block<6, 6>(0, 0) += d_fabric_psi * d_psi;
   d.fabric_unknowns.block<6, 6>(0, 6) = fabric_factor * d_n_a;
   d.fabric_unknowns.col(kMultiplier) = d_fabric_l;
+  d.fabric_void_ratio = d_fabric_psi;  // d psi / d e = 1
   return true;
 }
 
@@ -719,6 +735,7 @@ bool plastic_sensitivity(const Parameters<double>& par, const State<double>& s,
   y_end.stress = dx.block<6, 6>(0, 0);
   y_end.alpha = dx.block<6, 6>(6, 0);
   y_end.fabric = inputs->fabric_unknowns.lazyProduct(dx) + inputs->fabric_start * y.fabric;
+  if (par.n_F != 0.0) y_end.fabric += inputs->fabric_void_ratio * d_void_ratio;
   y_end.void_ratio = d_void_ratio;
   y_end.alpha_in = y.alpha_in;
   return end_state(par, step, solution.x, end);

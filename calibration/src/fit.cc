@@ -27,7 +27,7 @@ using fit_detail::run_test;
 namespace {
 
 // The model's parameters, then a_cs.
-static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 17);
+static_assert(kParameterFields<double>.size() + 1 == kNumFitParameters && kAcsIndex == 18);
 
 // The index of a parameter in the fit vector, by its name in kParameterFields (at compile time:
 // a misspelt name does not compile).
@@ -41,7 +41,7 @@ constexpr int kG0 = fit_index("G0"), kNu = fit_index("nu"), kMc = fit_index("M_c
               kLambdaC = fit_index("lambda_c"), kXi = fit_index("xi"), kH0 = fit_index("h0"),
               kCh = fit_index("c_h"), kNb = fit_index("n_b"), kA0 = fit_index("A0"),
               kNd = fit_index("n_d"), kEA = fit_index("e_A"), kKF = fit_index("k_F"),
-              kNbLoose = fit_index("n_b_loose"), kNG = fit_index("n_G");
+              kNbLoose = fit_index("n_b_loose"), kNG = fit_index("n_G"), kNF = fit_index("n_F");
 const std::array<const char*, kNumFitParameters> kNames = [] {
   std::array<const char*, kNumFitParameters> names{};
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
@@ -178,10 +178,10 @@ DriverOptions FitOptions::report_driver_options() {
 }
 
 FitVector FitOptions::default_initial() {
-  // Toyoura-like values of docs/model.md (DM04 Table 1), n_b_loose = 0 and n_G = 1/2 (DM04's
-  // bounding surface and elasticity), a_cs = 1.
+  // Toyoura-like values of docs/model.md (DM04 Table 1), n_b_loose = 0, n_G = 1/2 and n_F = 0
+  // (DM04's bounding surface and elasticity, LD12's fabric rate), a_cs = 1.
   return {125.0, 0.05, 1.25, 0.712, 0.934, 0.019, 0.7, 0.01, 7.05,
-          0.968, 1.1,  0.704, 3.5, 0.1,  5.0,  0.0, 0.5,  1.0};
+          0.968, 1.1,  0.704, 3.5, 0.1,  5.0,  0.0, 0.5,  0.0, 1.0};
 }
 
 // The model's parameters search kParameterFields' fit ranges; a_cs, the fabric at the critical
@@ -463,7 +463,7 @@ class Calibration {
   void bound_c_h();                // c_h e_Gamma < 1
   void estimate_elasticity();      // stage elastic: G0, nu from the first output interval
   void prepare_paths();            // the strain grids; whether c_h, n_b_loose, n_G are identifiable
-  void fit_fabric();               // stage fabric: a_cs measured, k_F fitted
+  void fit_fabric();               // stage fabric: a_cs measured, k_F and n_F fitted
   void fit_plastic();              // stage plastic: h0, c_h, n_b, A0, n_d, e_A, n_b_loose
   void fit_jointly();              // stage joint: all but the critical state line and m
   CalibrationResult finish();      // values, bounds, errors per test, the SFF relation
@@ -835,7 +835,7 @@ void Calibration::fit_fabric() {
     set(kAcsIndex, mean(a_cs), standard_error_of_mean(a_cs), "fabric");
   ResidualSpec spec = base_spec();
   spec.eta = spec.volumetric = false;
-  run_stage(Stage::kFabric, spec, free_of({kKF}), 1);
+  run_stage(Stage::kFabric, spec, free_of({kKF, kNF}), 1);
 }
 
 void Calibration::fit_plastic() {
@@ -847,7 +847,7 @@ void Calibration::fit_plastic() {
 
 void Calibration::fit_jointly() {
   run_stage(Stage::kJoint, base_spec(),
-            free_of({kG0, kNu, kMc, kC, kH0, kCh, kNb, kA0, kNd, kEA, kKF, kNbLoose, kNG}),
+            free_of({kG0, kNu, kMc, kC, kH0, kCh, kNb, kA0, kNd, kEA, kKF, kNbLoose, kNG, kNF}),
             options_.starts);
 }
 

@@ -423,8 +423,9 @@ StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Gr
                         int starts, std::uint64_t seed, const std::string& stage_name,
                         const SetCheck& check) {
   // The Jet size is the number of free parameters (Jet arithmetic costs about its size, and a
-  // Jacobian evaluation is mostly Jet arithmetic): 1 (fabric stage), 6 or 7 (plastic, 7 with
-  // n_b_loose), 10 to 13 (joint: with c, n_b_loose and n_G where each is identifiable).
+  // Jacobian evaluation is mostly Jet arithmetic): 1 or 2 (fabric stage: k_F, n_F), 6 or 7
+  // (plastic, 7 with n_b_loose), 10 to 14 (joint: with c, n_b_loose and n_G where each is
+  // identifiable).
   // Larger stages are not built (each size compiles the whole path integration once more).
   auto sized = [&](auto size) {
     return solve_stage_sized<decltype(size)::value>(tests, grids, spec, x0, free, options, lower,
@@ -432,7 +433,8 @@ StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Gr
   };
   switch (free.size()) {
     case 1: return sized(std::integral_constant<int, 1>());
-    case 2: case 3: case 4: case 5:
+    case 2: return sized(std::integral_constant<int, 2>());
+    case 3: case 4: case 5:
     case 6: return sized(std::integral_constant<int, 6>());
     case 7: return sized(std::integral_constant<int, 7>());
     case 8: case 9:
@@ -440,9 +442,10 @@ StageResult solve_stage(const std::vector<TestData>& tests, const std::vector<Gr
     case 11: return sized(std::integral_constant<int, 11>());
     case 12: return sized(std::integral_constant<int, 12>());
     case 13: return sized(std::integral_constant<int, 13>());
+    case 14: return sized(std::integral_constant<int, 14>());
     default:
       throw std::logic_error("solve_stage: " + std::to_string(free.size()) +
-                             " free parameters in stage " + stage_name + " (1 to 13 are built)");
+                             " free parameters in stage " + stage_name + " (1 to 14 are built)");
   }
 }
 

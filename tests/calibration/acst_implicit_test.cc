@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibration/material_point.h"
@@ -52,6 +53,7 @@ TEST(AcstImplicit, LocalJacobianMatchesAutomaticDifferentiation) {
   Parameters<double> par = toyoura();
   par.n_b_loose = 4.0;  // the loose side's slope, for the last state
   par.n_G = 0.3;        // not DM04's 1/2, whose power is a square root
+  par.n_F = 3.0;        // a fabric rate that follows psi (through p and e)
   // A plastic state, one with alpha_in = alpha (the hardening floor), one from the apex and one
   // looser than the critical state line (psi > 0).
   std::vector<State<double>> starts = {loaded_state(0.80, 0.01), loaded_state(0.70, 0.05)};
@@ -184,10 +186,12 @@ std::vector<TangentCase> tangent_cases() {
 TEST(AcstImplicit, TangentMatchesCentredFiniteDifferences) {
   Parameters<double> par = toyoura();
   const IntegrationOptions options;  // the FE default
-  for (const double n_G : {0.5, 0.3})  // DM04's elastic exponent (closed form), and another
+  // DM04's elastic exponent (closed form) and LD12's constant fabric rate, then others.
+  for (const auto& [n_G, n_F] : {std::pair{0.5, 0.0}, std::pair{0.3, 3.0}})
   for (TangentCase c : tangent_cases()) {
     par.n_G = n_G;
-    c.name += "_nG" + std::to_string(n_G).substr(0, 3);
+    par.n_F = n_F;
+    c.name += "_nG" + std::to_string(n_G).substr(0, 3) + "_nF" + std::to_string(n_F).substr(0, 3);
     implicit_detail::Tape tape;
     State<double> end;
     ASSERT_EQ(implicit_detail::integrate_values(par, c.start, c.increment, options, end, &tape,
@@ -212,11 +216,12 @@ TEST(AcstImplicit, TangentMatchesCentredFiniteDifferences) {
 TEST(AcstImplicit, AnalyticTangentEqualsTheJetReplayWithErrorControl) {
   // With error control the update is piecewise smooth (the substeps change with the increment);
   // the tangent is the exact derivative of each piece: the hand-written sensitivities equal the
-  // Jet replay of the same tape, with DM04's elastic exponent and another.
+  // Jet replay of the same tape, with DM04's elastic exponent and LD12's fabric rate, and others.
   Parameters<double> par = toyoura();
-  for (const double n_G : {0.5, 0.3})
+  for (const auto& [n_G, n_F] : {std::pair{0.5, 0.0}, std::pair{0.3, 3.0}})
   for (const double tolerance : {0.0, 1e-4, 1e-6}) {
     par.n_G = n_G;
+    par.n_F = n_F;
     const IntegrationOptions options = IntegrationOptions::implicit_controlled(tolerance);
     for (const TangentCase& c : tangent_cases()) {
       Eigen::Matrix<double, 9, 9> D;
@@ -229,7 +234,7 @@ TEST(AcstImplicit, AnalyticTangentEqualsTheJetReplayWithErrorControl) {
       for (int a = 0; a < 6; ++a)
         for (int b = 0; b < 6; ++b) jet(a, b) = end_jet.stress(kVoigtI[a], kVoigtJ[a]).v[b];
       EXPECT_LT(max_relative(voigt_of(D), jet), 1e-12)
-          << c.name << " tolerance " << tolerance << " n_G " << n_G;
+          << c.name << " tolerance " << tolerance << " n_G " << n_G << " n_F " << n_F;
     }
   }
 }
@@ -284,9 +289,11 @@ double worst_parameter_derivative_error(const Parameters<double>& par, const Sta
 
 TEST(AcstImplicit, ParameterDerivativesMatchFiniteDifferencesAfterThePeak) {
   // A dense specimen past its peak. n_b_loose (non-zero here) acts only where psi > 0: its
-  // derivatives must come out 0 on this path, as the differences do.
+  // derivatives must come out 0 on this path, as the differences do. n_F (non-zero: the
+  // differences step it relatively) speeds the fabric of this dense state.
   Parameters<double> par = toyoura();
   par.n_b_loose = 3.0;
+  par.n_F = 4.0;
   std::vector<double> eta;
   const double worst = worst_parameter_derivative_error(
       par, isotropic_state(kP0, 0.70, triaxial_deviator(0.3)), 0.10, "c", &eta);
@@ -297,9 +304,11 @@ TEST(AcstImplicit, ParameterDerivativesMatchFiniteDifferencesAfterThePeak) {
 }
 
 TEST(AcstImplicit, ParameterDerivativesMatchFiniteDifferencesOnTheLooseSide) {
-  // A loose specimen (psi_0 = +0.035), where the bounding slope is n_b + n_b_loose.
+  // A loose specimen (psi_0 = +0.035), where the bounding slope is n_b + n_b_loose and n_F
+  // slows the fabric.
   Parameters<double> par = toyoura();
   par.n_b_loose = 4.0;
+  par.n_F = 4.0;
   const double worst = worst_parameter_derivative_error(
       par, isotropic_state(kP0, 0.95, triaxial_deviator(0.3)), 0.10, "c");
   RecordProperty("worst_relative_error", scientific(worst));
@@ -327,9 +336,10 @@ TEST(AcstImplicit, DriverPathsAgreeWithTheConvergedExplicitReference) {
   // Reference: the explicit integration at 1e-10 on the same increments (converged to about
   // 1e-10). The implicit at the driver's default (error control 1e-7) must agree to 1e-6 in q
   // and eps_v (p for undrained paths); the FE default (one step per increment) is recorded.
-  // n_b_loose acts on the loose specimen (e0 0.95, psi_0 = +0.035).
+  // n_b_loose acts on the loose specimen (e0 0.95, psi_0 = +0.035); n_F on every one.
   Parameters<double> par = toyoura();
   par.n_b_loose = 4.0;
+  par.n_F = 3.0;
   DriverOptions reference;
   reference.integration = IntegrationOptions::explicit_reference(1e-10);
   DriverOptions fe_default;

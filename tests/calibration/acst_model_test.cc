@@ -264,6 +264,37 @@ TEST(AcstJet, JetAndDoubleUpdatesAgreeToRoundOff) {
   EXPECT_NEAR(end_value.void_ratio, end_double.void_ratio, 1e-15);
 }
 
+TEST(AcstFabric, RateIsKFTimesExpOfMinusNFPsi) {
+  // Eq. (16) with the rate k_F exp(-n_F psi): from one state the increments with and without n_F
+  // differ by exactly that factor (the loading index does not depend on n_F), and n_F = 0 gives
+  // LD12's rate bit for bit; the ratio is above 1 where psi < 0 (dense) and below where psi > 0.
+  Parameters<double> par = toyoura();
+  Tensor<double> deps = 1e-4 * deviatoric_unit();
+  deps(2, 2) += 2e-5;
+  for (const double e0 : {0.70, 0.96}) {
+    par.n_F = 0.0;
+    const PathResult<double> r =
+        drained_triaxial(par, isotropic_state(kP0, e0, triaxial_deviator(0.3)), 0.01, 50);
+    ASSERT_EQ(r.status, UpdateStatus::kOk);
+    const State<double>& s = r.state;
+    ModelQuantities<double> q;
+    ASSERT_TRUE(evaluate_model(par, s, q));
+    EXPECT_EQ(q.fabric_rate, par.k_F);
+    detail::Increment<double> constant_rate, state_rate;
+    ASSERT_TRUE(detail::increment(par, s, deps, true, constant_rate));
+    par.n_F = 4.0;
+    ASSERT_TRUE(detail::increment(par, s, deps, true, state_rate));
+    ASSERT_GT(constant_rate.fabric.norm(), 0.0) << "the increment must be plastic";
+    const double factor = std::exp(-par.n_F * q.psi);
+    EXPECT_LT((state_rate.fabric - factor * constant_rate.fabric).norm(),
+              1e-14 * state_rate.fabric.norm())
+        << "e0 " << e0;
+    EXPECT_EQ(state_rate.stress, constant_rate.stress) << "e0 " << e0;
+    if (e0 < 0.8) EXPECT_GT(factor, 1.2) << "dense: psi " << q.psi;
+    else EXPECT_LT(factor, 0.9) << "loose: psi " << q.psi;
+  }
+}
+
 TEST(AcstIntegration, LoadReversalResetsAlphaIn) {
   const Parameters<double> par = toyoura();
   const State<double> loaded = loaded_state(0.01);

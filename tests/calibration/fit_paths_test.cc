@@ -155,7 +155,7 @@ TEST(FitPaths, CAndTheUndrainedResponseAreFittedBackFromModelData) {
   options.max_points = 25;
   options.initial = truth;
   options.fixed = {"G0", "nu", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs", "k_F",
-                   "n_b", "A0", "n_G"};
+                   "n_b", "A0", "n_G", "n_F"};
   const char* free[] = {"M_c", "c", "h0", "n_d"};
   const double distant[] = {1.3, 1.25, 2.0, 2.0};  // c starts at 0.94
   for (int j = 0; j < 4; ++j) options.initial[fit_parameter_index(free[j])] *= distant[j];

@@ -69,7 +69,8 @@ TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
                                        synthetic_test("loose", truth, 0.88, 0.1, 0.2, 12)};
   // Free: M_c, h0, n_b, A0, n_d, k_F (the others are fixed at the truth).
   FitOptions options = joint_fit_from(truth, {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma",
-                                              "lambda_c", "xi", "a_cs", "n_b_loose", "n_G"});
+                                              "lambda_c", "xi", "a_cs", "n_b_loose", "n_G",
+                                              "n_F"});
   const std::initializer_list<const char*> free = {"M_c", "h0", "n_b", "A0", "n_d", "k_F"};
   const double distant[] = {1.5, 2.5, 2.0, 0.5, 2.0, 0.4};  // start = truth x factor
   int j = 0;
@@ -94,7 +95,7 @@ TEST(FitIdentifiability, TheLooseSlopeIsFittedBackOnlyWhereATestStartsLoose) {
   const TestData loose = synthetic_test("loose", truth, 0.95, 0.1, 0.2, 32);
   FitOptions options =
       joint_fit_from(truth, {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi",
-                             "a_cs", "A0", "n_d", "k_F", "M_c", "n_G"});
+                             "a_cs", "A0", "n_d", "k_F", "M_c", "n_G", "n_F"});
   options.initial[fit_parameter_index("h0")] = 10.0;
   options.initial[fit_parameter_index("n_b")] = 2.0;
   options.initial[fit_parameter_index("n_b_loose")] = 0.0;  // DM04's one slope
@@ -120,11 +121,30 @@ TEST(FitIdentifiability, TheElasticExponentIsFittedBack) {
                      0.05)};
   FitOptions options =
       joint_fit_from(truth, {"nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi", "a_cs",
-                             "A0", "n_d", "k_F", "M_c", "n_b", "n_b_loose"});
+                             "A0", "n_d", "k_F", "M_c", "n_b", "n_b_loose", "n_F"});
   options.initial[fit_parameter_index("G0")] = 80.0;
   options.initial[fit_parameter_index("n_G")] = 0.5;
   const CalibrationResult r = calibrate(tests, options);
   expect_fitted_back(r, truth, {"G0", "h0", "n_G"});
+}
+
+// n_F, the state exponent of the fabric rate, from a dense and a loose test's a_c histories
+// (psi < 0 and > 0), started from LD12's constant rate: the fabric stage alone fits it with k_F.
+TEST(FitIdentifiability, TheFabricRatesStateExponentIsFittedBack) {
+  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
+  truth[fit_parameter_index("h0")] = 5.0;
+  truth[fit_parameter_index("k_F")] = 8.0;
+  truth[fit_parameter_index("n_F")] = 6.0;
+  const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 51),
+                                       synthetic_test("loose", truth, 0.95, 0.1, 0.2, 52)};
+  FitOptions options;
+  options.stages = {Stage::kFabric};
+  options.initial = truth;
+  options.initial[fit_parameter_index("k_F")] = 20.0;
+  options.initial[fit_parameter_index("n_F")] = 0.0;
+  options.fixed = {"a_cs"};
+  const CalibrationResult r = calibrate(tests, options);
+  expect_fitted_back(r, truth, {"k_F", "n_F"});
 }
 
 TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
@@ -133,7 +153,7 @@ TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
                                        synthetic_test("loose", truth, 0.88, 0.1, 0.2, 22)};
   FitOptions options =
       joint_fit_from(truth, {"G0", "nu", "c", "m", "c_h", "e_A", "e_gamma", "lambda_c", "xi",
-                             "a_cs", "k_F", "n_b_loose", "n_G"});
+                             "a_cs", "k_F", "n_b_loose", "n_G", "n_F"});
   options.max_iterations = 6;
   options.initial[fit_parameter_index("h0")] *= 2.0;
   options.initial[fit_parameter_index("n_d")] *= 0.6;

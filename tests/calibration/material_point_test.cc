@@ -54,7 +54,7 @@ TEST(MixedIncrement, LargeUnreliableIncrementsConvergeWithoutCycling) {
                                0.7,                 0.01,                10.21331913577934,
                                0.99,                3.106397959702359,   1.4236928392175574,
                                1.96860911530643,    0.20981249439349592, 56.33581004970864,
-                               0.0,                 0.5};
+                               0.0,                 0.5,                 0.0};
   DriverOptions options;
   options.integration = IntegrationOptions();  // the FE default
   options.stress_tolerance = 1e-9;

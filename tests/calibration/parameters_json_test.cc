@@ -85,11 +85,13 @@ TEST(ParametersJson, RoundTripIsExact) {
   EXPECT_EQ(q.k_F, p.k_F);
   EXPECT_EQ(q.n_b_loose, p.n_b_loose);
   EXPECT_EQ(q.n_G, p.n_G);
+  EXPECT_EQ(q.n_F, p.n_F);
   std::remove(path.c_str());
 }
 
-// n_b_loose and n_G came after the first parameter files: a file without them is the model it
-// was written for (n_b_loose = 0, n_G = 1/2); given, they are read and checked like the others.
+// n_b_loose, n_G and n_F came after the first parameter files: a file without them is the model
+// it was written for (n_b_loose = 0, n_G = 1/2, n_F = 0); given, they are read and checked like
+// the others.
 TEST(ParametersJson, ParametersAddedLaterMayBeAbsentAndAreReadWhereGiven) {
   const std::string path = temp_path("added_later");
   // The valid file with one more entry {"value": value, "unit": "1"}.
@@ -105,12 +107,16 @@ TEST(ParametersJson, ParametersAddedLaterMayBeAbsentAndAreReadWhereGiven) {
   };
   EXPECT_EQ(read(valid_text()).n_b_loose, 0.0);
   EXPECT_EQ(read(valid_text()).n_G, 0.5);
+  EXPECT_EQ(read(valid_text()).n_F, 0.0);
+  EXPECT_EQ(read(with("n_F", "12.5")).n_F, 12.5);
   EXPECT_EQ(read(with("n_b_loose", "7.5")).n_b_loose, 7.5);
   EXPECT_EQ(read(with("n_G", "0.25")).n_G, 0.25);
   const std::string negative = read_error(with("n_b_loose", "-1"));
   EXPECT_NE(negative.find("'n_b_loose'"), std::string::npos) << negative;
   const std::string at_one = read_error(with("n_G", "1"));
   EXPECT_NE(at_one.find("'n_G'"), std::string::npos) << at_one;
+  const std::string negative_rate = read_error(with("n_F", "-2"));
+  EXPECT_NE(negative_rate.find("'n_F'"), std::string::npos) << negative_rate;
   std::remove(path.c_str());
 }
 

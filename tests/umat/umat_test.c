@@ -162,21 +162,22 @@ static void drained_path_matches_driver(const double* parameters) {
   check(four_error <= 1e-12, "NTENS = 4 gives the NTENS = 6 path, relative q difference",
         four_error);
 
-  /* PROPS(23..24), n_b_loose and n_G: at the values NPROPS = 22 stands for, the same path; at
+  /* PROPS(23..25), n_b_loose, n_G and n_F: at the values NPROPS = 22 stands for, the same path; at
    * others, the driver's path with them. */
   Point all = make_point(parameters, 6, SFFCAL_UMAT_NPROPS_MAX);
   umat_drained_triaxial(&all, kAxialStrainEnd, kIncrements, q4, ev4);
   same = 1;
   for (int n = 0; n < kIncrements; ++n) same = same && q4[n] == q[n] && ev4[n] == ev[n];
-  check(same, "NPROPS = 24 with n_b_loose = 0, n_G = 1/2 gives the NPROPS = 22 path", 0.0);
+  check(same, "NPROPS = 25 with n_b_loose = 0, n_G = 1/2, n_F = 0 gives the NPROPS = 22 path", 0.0);
   double ours[SFFCAL_UMAT_NPROPS_MAX - SFFCAL_UMAT_PROP_PARAMETERS];
   for (int i = 0; i < SFFCAL_UMAT_NPROPS_MAX - SFFCAL_UMAT_PROP_PARAMETERS; ++i)
     ours[i] = parameters[i];
   ours[15] = 2.0; /* n_b_loose */
   ours[16] = 0.3; /* n_G */
+  ours[17] = 3.0; /* n_F */
   if (reference_drained_triaxial(ours, kP0, kE0, kFabric, kAxialStrainEnd, kIncrements, q_ref,
                                  ev_ref) != 0) {
-    check(0, "the reference driver path with n_b_loose and n_G converges", 0.0);
+    check(0, "the reference driver path with n_b_loose, n_G and n_F converges", 0.0);
     return;
   }
   Point with_ours = make_point(ours, 6, SFFCAL_UMAT_NPROPS_MAX);
@@ -187,7 +188,7 @@ static void drained_path_matches_driver(const double* parameters) {
     moved = fmax(moved, fabs(q4[n] - q[n]));
   }
   check(ours_error <= 1e-8 && moved > 1e-2 * kP0,
-        "n_b_loose, n_G in PROPS(23..24): the driver's path (and not the defaults'), relative q",
+        "n_b_loose, n_G, n_F in PROPS(23..25): the driver's path (and not the defaults'), relative q",
         ours_error);
 }
 

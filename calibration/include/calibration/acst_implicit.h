@@ -112,11 +112,12 @@ bool make_step(const Parameters<T>& par, const State<T>& start, const Tensor<T>&
   return true;
 }
 
-/// The fabric at the end of a backward-Euler step, F = F_0 + dlambda k_F (n - F) solved for F.
+/// The fabric at the end of a backward-Euler step, F = F_0 + dlambda k (n - F) solved for F, with
+/// k = fabric_rate at the end state.
 template <typename T>
-Tensor<T> end_fabric(const Parameters<T>& par, const Tensor<T>& start_fabric, const Tensor<T>& n,
+Tensor<T> end_fabric(const T& rate, const Tensor<T>& start_fabric, const Tensor<T>& n,
                      const T& dlambda) {
-  return (start_fabric + (dlambda * par.k_F) * n) / (1.0 + dlambda * par.k_F);
+  return (start_fabric + (dlambda * rate) * n) / (1.0 + dlambda * rate);
 }
 
 /// The end state of a backward-Euler step at the unknowns x (the fabric by end_fabric); false
@@ -133,7 +134,8 @@ bool end_state(const Parameters<T>& par, const PlasticStep<T>& step, const Unkno
   const Tensor<T> direction = (s.stress - p * Tensor<T>::Identity()) / p - s.alpha;
   const T squared = detail::contract(direction, direction);
   if (!(value_of(squared) > detail::kMinDirectionSquared)) return false;
-  s.fabric = end_fabric(par, step.start.fabric, Tensor<T>(direction / sqrt(squared)), x(kMultiplier));
+  const T rate = fabric_rate(par, T(s.void_ratio - critical_void_ratio(par, p)));
+  s.fabric = end_fabric(rate, step.start.fabric, Tensor<T>(direction / sqrt(squared)), x(kMultiplier));
   return true;
 }
 
@@ -239,6 +241,7 @@ struct InputDerivatives {
   Eigen::Matrix<double, 6, 1> n_weighted;               ///< n with the Voigt weights (for n : X)
   Eigen::Matrix<double, 6, kUnknowns> fabric_unknowns;  ///< dF_end / dx
   double fabric_start = 1.0;                            ///< dF_end / dF_0 = this * identity
+  Eigen::Matrix<double, 6, 1> fabric_void_ratio;        ///< dF_end / de (through the rate, Eq. 16)
 };
 
 /// The converged backward-Euler step: the unknowns, the factorised Jacobian at them (for the

@@ -29,13 +29,15 @@ inline constexpr double kAtmosphericPressure = 101325.0;
 template <typename T>
 using Tensor = Eigen::Matrix<T, 3, 3>;  // symmetric, compression positive
 
-/// The 15 parameters of acst-model.md, then two of ours (docs/model.md): n_b_loose, the bounding
-/// surface's added slope on the loose side (Eq. 7; 0 is the model of acst-model.md), and n_G, the
-/// pressure exponent of the elastic moduli (Eq. 1; 1/2 is acst-model.md's). All are
-/// dimensionless (G0 multiplies p_a).
+/// The 15 parameters of acst-model.md, then three of ours (docs/model.md): n_b_loose, the
+/// bounding surface's added slope on the loose side (Eq. 7; 0 is the model of acst-model.md), n_G,
+/// the pressure exponent of the elastic moduli (Eq. 1; 1/2 is acst-model.md's), and n_F, the
+/// state exponent of the fabric rate (Eq. 16; 0 is acst-model.md's). All are dimensionless (G0
+/// multiplies p_a).
 template <typename T>
 struct Parameters {
-  T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F, n_b_loose, n_G;
+  T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F, n_b_loose, n_G,
+      n_F;
 };
 
 namespace detail {
@@ -73,11 +75,11 @@ struct ParameterField {
   constexpr bool required() const { return value_if_absent != value_if_absent; }  // NaN: none
 };
 
-/// The parameters in the order of acst-model.md, then n_b_loose and n_G (ours): the one list
-/// that the parameter file, its validation, the fit vector, the fit's bounds and tables and
+/// The parameters in the order of acst-model.md, then n_b_loose, n_G and n_F (ours): the one
+/// list that the parameter file, its validation, the fit vector, the fit's bounds and tables and
 /// docs/model.md's table follow.
 template <typename T>
-inline constexpr std::array<ParameterField<T>, 17> kParameterFields = {{
+inline constexpr std::array<ParameterField<T>, 18> kParameterFields = {{
     {"G0", &Parameters<T>::G0, "1", {0.0, detail::kUnbounded, false, false}, 5.0, 3000.0},
     {"nu", &Parameters<T>::nu, "1", {-1.0, 0.5, false, false}, 0.0, 0.45},
     {"M_c", &Parameters<T>::M_c, "1", {0.0, detail::kUnbounded, false, false}, 0.3, 2.5},
@@ -96,6 +98,7 @@ inline constexpr std::array<ParameterField<T>, 17> kParameterFields = {{
     {"n_b_loose", &Parameters<T>::n_b_loose, "1", {0.0, detail::kUnbounded, true, false}, 0.0,
      60.0, 0.0},
     {"n_G", &Parameters<T>::n_G, "1", {0.0, 1.0, true, false}, 0.0, 0.9, 0.5},
+    {"n_F", &Parameters<T>::n_F, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 40.0, 0.0},
 }};
 
 template <typename T>
@@ -256,6 +259,7 @@ struct ModelQuantities {
   bool has_direction;     // false where r = alpha (n undefined)
   T cos3theta, g;         // Lode angle measure, g(theta)
   T e_c, psi, A, zeta;    // critical void ratio, state parameter, F:n, dilatancy state parameter
+  T fabric_rate;          // k_F exp(-n_F psi), the rate of Eq. (16)
   Tensor<T> alpha_b, alpha_d;  // bounding and dilatancy image back-stress ratios
   T D, h, K_p, N;         // dilatancy, hardening coefficient, plastic modulus [Pa], n:r on f = 0
 };

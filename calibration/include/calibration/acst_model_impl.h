@@ -173,10 +173,25 @@ T relative_yield_function(const Parameters<T>& par, const State<T>& state) {
   return norm - kSqrtTwoThirds * par.m;
 }
 
+/// Eq. (5), DM04 Eq. (7): the critical void ratio at mean stress p [Pa].
+template <typename T>
+T critical_void_ratio(const Parameters<T>& par, const T& p) {
+  using std::pow;
+  return par.e_gamma - par.lambda_c * pow(p / kAtmosphericPressure, par.xi);
+}
+
+/// The rate of Eq. (16), k_F exp(-n_F psi) (docs/model.md, ours): a denser state (psi < 0) turns
+/// its fabric faster, a looser one slower; at the critical state (psi = 0) and for n_F = 0 it is
+/// LD12's k_F, bit for bit.
+template <typename T>
+T fabric_rate(const Parameters<T>& par, const T& psi) {
+  using std::exp;
+  return par.k_F * exp(-par.n_F * psi);
+}
+
 template <typename T>
 bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuantities<T>& q) {
   using std::exp;
-  using std::pow;
   using std::sqrt;
   const Tensor<T> I = detail::identity<T>();
   const T& e = state.void_ratio;
@@ -201,11 +216,13 @@ bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuanti
   if (value_of(q.cos3theta) < -1.0) q.cos3theta = T(-1.0);
   q.g = 2.0 * par.c / ((1.0 + par.c) - (1.0 - par.c) * q.cos3theta);
 
-  // Eq. (5)-(6): critical state line, state parameter, fabric anisotropy variable, zeta.
-  q.e_c = par.e_gamma - par.lambda_c * pow(q.p / kAtmosphericPressure, par.xi);
+  // Eq. (5)-(6): critical state line, state parameter, fabric anisotropy variable, zeta; the
+  // fabric's rate of Eq. (16).
+  q.e_c = critical_void_ratio(par, q.p);
   q.psi = e - q.e_c;
   q.A = detail::contract(state.fabric, q.n);
   q.zeta = q.psi - par.e_A * (q.A - 1.0);
+  q.fabric_rate = fabric_rate(par, q.psi);
 
   // Eq. (7)-(8): bounding and dilatancy image back-stress ratios; the bounding slope is
   // n_b + n_b_loose where psi > 0 (docs/model.md, ours).
@@ -252,7 +269,7 @@ bool increment(const Parameters<T>& par, const State<T>& s, const Tensor<T>& dep
   inc.void_ratio = -(1.0 + s.void_ratio) * deps_v;
   if (plastic && value_of(L) > 0.0) {
     inc.alpha = (L * (2.0 / 3.0) * q.h) * (q.alpha_b - s.alpha);  // Eq. (15)
-    inc.fabric = (L * par.k_F) * (q.n - s.fabric);                  // Eq. (16)
+    inc.fabric = (L * q.fabric_rate) * (q.n - s.fabric);            // Eq. (16)
   } else {
     inc.alpha.setZero();
     inc.fabric.setZero();
@@ -423,7 +440,7 @@ bool correct_drift(const Parameters<T>& par, State<T>& s) {
       const T dlambda = f_abs / denominator;
       corrected.stress -= dlambda * ((2.0 * q.G) * q.n + (q.K * q.D) * I);
       corrected.alpha += (dlambda * (2.0 / 3.0) * q.h) * (q.alpha_b - s.alpha);
-      corrected.fabric += (dlambda * par.k_F) * (q.n - s.fabric);
+      corrected.fabric += (dlambda * q.fabric_rate) * (q.n - s.fabric);
     }
     const T f_new = relative_yield_function(par, corrected);
     if (!(value_of(denominator) > 0.0) || !is_finite(corrected) ||

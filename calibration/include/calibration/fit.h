@@ -88,9 +88,9 @@ void validate_test_data(const TestData& test);
 
 /// The fitted vector: the 17 model parameters (order of Parameters) and a_cs, the critical-state
 /// norm of the DEM fabric tensor A (F = A/a_cs).
-inline constexpr int kNumFitParameters = 18;
+inline constexpr int kNumFitParameters = 19;
 using FitVector = std::array<double, kNumFitParameters>;
-inline constexpr int kAcsIndex = 17;
+inline constexpr int kAcsIndex = 18;
 /// Names as in the parameter file, then "a_cs".
 const std::array<const char*, kNumFitParameters>& fit_parameter_names();
 /// Index of a name in FitVector; throws for an unknown name.

@@ -41,8 +41,7 @@ PointRecord<T> make_record(const Parameters<T>& par, const State<T>& state, cons
   r.q = state.stress(2, 2) - 0.5 * (state.stress(0, 0) + state.stress(1, 1));
   r.eta = r.q / r.p;
   r.void_ratio = state.void_ratio;
-  r.psi = state.void_ratio -
-          (par.e_gamma - par.lambda_c * pow(r.p / kAtmosphericPressure, par.xi));
+  r.psi = state.void_ratio - critical_void_ratio(par, r.p);
   r.fabric_triaxial = state.fabric(2, 2) - 0.5 * (state.fabric(0, 0) + state.fabric(1, 1));
   const T ff = state.fabric.cwiseProduct(state.fabric).sum();
   r.fabric_norm = value_of(ff) > 0.0 ? sqrt(ff) : T(0.0);

@@ -15,6 +15,7 @@
  *                 SFFCAL_ACST_PARAMETERS.
  *   PROPS(23)     n_b_loose (docs/model.md Eq. 7); 0 (the model without it) when NPROPS < 23.
  *   PROPS(24)     n_G (docs/model.md Eq. 1); 1/2 (the model without it) when NPROPS < 24.
+ *   PROPS(25)     n_F (docs/model.md Eq. 16); 0 (the model without it) when NPROPS < 25.
  * STATEV (NSTATV >= SFFCAL_UMAT_NSTATV), compression positive, tensors in 11, 22, 33, 12, 13, 23:
  *   STATEV(1)      0 before the first increment (the state is then set from STRESS and PROPS:
  *                  alpha = alpha_in = s/p of the initial stress), 1 after
@@ -55,7 +56,7 @@ enum {
   SFFCAL_UMAT_PROP_PARAMETERS = 7,
   SFFCAL_UMAT_NPROPS_STATE = 7,
   SFFCAL_UMAT_NPROPS_ALL = 22,  /* the 15 parameters of the first version */
-  SFFCAL_UMAT_NPROPS_MAX = 24   /* and n_b_loose, n_G */
+  SFFCAL_UMAT_NPROPS_MAX = 25   /* and n_b_loose, n_G, n_F */
 };
 
 void sffcal_umat(double* stress, double* statev, double* ddsdde, double* sse, double* spd,
