@@ -12,11 +12,15 @@
 //
 // BM_UpdateWithTangentElasticExponent: the implicit FE default at n_G = 0.5 (DM04's exponent,
 // square roots), 0.3 and 0.1 (pow, log1p and expm1 in the elastic path), the same 5e-4 cases.
+// BM_UpdateWithTangentFabricRate: the same at n_F = 0 (LD12's constant fabric rate) and 13 (the
+// mean-of-three fit's), whose rate's psi terms enter the local Jacobian and the tangent.
 //
 //   model_update --benchmark_repetitions=10 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
+
+#include <string>
 
 #include "calibration/acst_model.h"
 #include "calibration/material_point.h"
@@ -108,10 +112,10 @@ void cases(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMicrosecond);
 }
 
-// {n_G in 1e-2, state}: the implicit FE default with the tangent, increment 5e-4.
-void BM_UpdateWithTangentElasticExponent(benchmark::State& bench) {
-  calibration::Parameters<double> par = toyoura();
-  par.n_G = 1e-2 * static_cast<double>(bench.range(0));
+// The implicit FE default with the tangent, increment 5e-4, from the state bench.range(1) names
+// (0: plastic, 1: crossing), with `par`; labelled `what` and the state.
+void update_with_tangent_of(benchmark::State& bench, const calibration::Parameters<double>& par,
+                            const std::string& what) {
   const State<double> start = bench.range(1) == 0 ? plastic() : isotropic();
   const Tensor<double> deps = increment(5e-4);
   State<double> end;
@@ -123,14 +127,30 @@ void BM_UpdateWithTangentElasticExponent(benchmark::State& bench) {
     benchmark::DoNotOptimize(end.stress.data());
     benchmark::DoNotOptimize(tangent.data());
   }
-  bench.SetLabel(std::string("n_G ") + std::to_string(par.n_G).substr(0, 4) +
-                 (bench.range(1) == 0 ? " plastic" : " crossing"));
+  bench.SetLabel(what + (bench.range(1) == 0 ? " plastic" : " crossing"));
+}
+
+// {n_G in 1e-2, state}.
+void BM_UpdateWithTangentElasticExponent(benchmark::State& bench) {
+  calibration::Parameters<double> par = toyoura();
+  par.n_G = 1e-2 * static_cast<double>(bench.range(0));
+  update_with_tangent_of(bench, par, "n_G " + std::to_string(par.n_G).substr(0, 4));
+}
+
+// {n_F, state}.
+void BM_UpdateWithTangentFabricRate(benchmark::State& bench) {
+  calibration::Parameters<double> par = toyoura();
+  par.n_F = static_cast<double>(bench.range(0));
+  update_with_tangent_of(bench, par, "n_F " + std::to_string(bench.range(0)));
 }
 
 BENCHMARK(BM_Update)->Apply(cases);
 BENCHMARK(BM_UpdateWithTangent)->Apply(cases);
 BENCHMARK(BM_UpdateWithTangentElasticExponent)
     ->ArgsProduct({{50, 30, 10}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_UpdateWithTangentFabricRate)
+    ->ArgsProduct({{0, 13}, {0, 1}})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
