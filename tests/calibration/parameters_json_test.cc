@@ -117,6 +117,8 @@ TEST(ParametersJson, ParametersAddedLaterMayBeAbsentAndAreReadWhereGiven) {
   EXPECT_NE(at_one.find("'n_G'"), std::string::npos) << at_one;
   const std::string negative_rate = read_error(with("n_F", "-2"));
   EXPECT_NE(negative_rate.find("'n_F'"), std::string::npos) << negative_rate;
+  const std::string huge_rate = read_error(with("n_F", "1e4"));  // exp(-n_F psi) would overflow
+  EXPECT_NE(huge_rate.find("'n_F'"), std::string::npos) << huge_rate;
   std::remove(path.c_str());
 }
 

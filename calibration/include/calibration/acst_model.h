@@ -98,7 +98,8 @@ inline constexpr std::array<ParameterField<T>, 18> kParameterFields = {{
     {"n_b_loose", &Parameters<T>::n_b_loose, "1", {0.0, detail::kUnbounded, true, false}, 0.0,
      60.0, 0.0},
     {"n_G", &Parameters<T>::n_G, "1", {0.0, 1.0, true, false}, 0.0, 0.9, 0.5},
-    {"n_F", &Parameters<T>::n_F, "1", {0.0, detail::kUnbounded, true, false}, 0.0, 40.0, 0.0},
+    // n_F <= 100 keeps exp(-n_F psi) finite and meaningful (below 1e22) for |psi| <= 0.5.
+    {"n_F", &Parameters<T>::n_F, "1", {0.0, 100.0, true, true}, 0.0, 40.0, 0.0},
 }};
 
 template <typename T>
