@@ -86,7 +86,7 @@ TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv
 /// path's direction (rising in compression, falling in extension), p0 or e0 out of range.
 void validate_test_data(const TestData& test);
 
-/// The fitted vector: the 17 model parameters (order of Parameters) and a_cs, the critical-state
+/// The fitted vector: the 18 model parameters (order of Parameters) and a_cs, the critical-state
 /// norm of the DEM fabric tensor A (F = A/a_cs).
 inline constexpr int kNumFitParameters = 19;
 using FitVector = std::array<double, kNumFitParameters>;
