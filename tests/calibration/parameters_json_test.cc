@@ -223,5 +223,24 @@ TEST(ParameterTable, ValidationNamesTheRangeOfTheTable) {
   EXPECT_NO_THROW(validate_parameters(par));
 }
 
+// A set filled in member by member (as the FE tests and the UMAT do) that misses one is refused by
+// the missing one's name: every member starts unset (NaN).
+TEST(ParameterTable, AParameterLeftUnsetIsNamed) {
+  const Parameters<double> full = testing::toyoura<double>();
+  for (const ParameterField<double>& missing : kParameterFields<double>) {
+    Parameters<double> par;
+    for (const ParameterField<double>& field : kParameterFields<double>)
+      if (&field != &missing) par.*field.member = full.*field.member;
+    try {
+      validate_parameters(par);
+      ADD_FAILURE() << missing.name << " left unset was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("'") + missing.name + "' = nan"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace calibration

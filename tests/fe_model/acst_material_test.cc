@@ -32,8 +32,9 @@ calibration::Parameters<double> parameters() {
   p.n_d = 3.5;
   p.e_A = 0.1;
   p.k_F = 5.0;
-  p.n_b_loose = 0.0;  // DM04's bounding surface and elasticity
+  p.n_b_loose = 0.0;  // DM04's bounding surface and elasticity, LD12's fabric rate
   p.n_G = 0.5;
+  p.n_F = 0.0;
   return p;
 }
 

@@ -33,11 +33,15 @@ using Tensor = Eigen::Matrix<T, 3, 3>;  // symmetric, compression positive
 /// bounding surface's added slope on the loose side (Eq. 7; 0 is the model of acst-model.md), n_G,
 /// the pressure exponent of the elastic moduli (Eq. 1; 1/2 is acst-model.md's), and n_F, the
 /// state exponent of the fabric rate (Eq. 16; 0 is acst-model.md's). All are dimensionless (G0
-/// multiplies p_a).
+/// multiplies p_a). Each starts unset (NaN), which validate_parameters refuses by name: a set
+/// filled in member by member that misses one is an error, not an indeterminate value.
 template <typename T>
 struct Parameters {
-  T G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0, n_d, e_A, k_F, n_b_loose, n_G,
-      n_F;
+  static T unset() { return T(std::numeric_limits<double>::quiet_NaN()); }
+  T G0 = unset(), nu = unset(), M_c = unset(), c = unset(), e_gamma = unset(),
+    lambda_c = unset(), xi = unset(), m = unset(), h0 = unset(), c_h = unset(), n_b = unset(),
+    A0 = unset(), n_d = unset(), e_A = unset(), k_F = unset(), n_b_loose = unset(),
+    n_G = unset(), n_F = unset();
 };
 
 namespace detail {
