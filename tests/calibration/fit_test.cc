@@ -49,6 +49,14 @@ void expect_fitted_back(const CalibrationResult& r, const FitVector& truth,
   }
 }
 
+// The Toyoura-like parameters with a_cs = 0.8, and `changes` (name, value) applied: the truth
+// the identifiability tests make their synthetic data from.
+FitVector toyoura_truth(std::initializer_list<std::pair<const char*, double>> changes) {
+  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
+  for (const auto& [name, value] : changes) truth[fit_parameter_index(name)] = value;
+  return truth;
+}
+
 // The joint stage alone, one start from the truth, with `held` fixed there.
 FitOptions joint_fit_from(const FitVector& truth, std::vector<std::string> held) {
   FitOptions options;
@@ -60,10 +68,7 @@ FitOptions joint_fit_from(const FitVector& truth, std::vector<std::string> held)
 }
 
 TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
-  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
-  truth[fit_parameter_index("h0")] = 5.0;
-  truth[fit_parameter_index("n_d")] = 2.0;
-  truth[fit_parameter_index("k_F")] = 8.0;
+  const FitVector truth = toyoura_truth({{"h0", 5.0}, {"n_d", 2.0}, {"k_F", 8.0}});
   // Noise of 0.2 residual scales: q/p +-0.01, eps_v +-0.001, a_c +-0.01.
   const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 11),
                                        synthetic_test("loose", truth, 0.88, 0.1, 0.2, 12)};
@@ -88,9 +93,7 @@ TEST(FitIdentifiability, ModelDataAreFittedBackFromADistantStart) {
 // n_b_loose acts where psi > 0 only: fitted back from a test that starts looser than the
 // critical state line (toyoura: e_c = 0.915 at 100 kPa), held with a note where none does.
 TEST(FitIdentifiability, TheLooseSlopeIsFittedBackOnlyWhereATestStartsLoose) {
-  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
-  truth[fit_parameter_index("h0")] = 5.0;
-  truth[fit_parameter_index("n_b_loose")] = 6.0;
+  const FitVector truth = toyoura_truth({{"h0", 5.0}, {"n_b_loose", 6.0}});
   const TestData dense = synthetic_test("dense", truth, 0.70, 0.1, 0.2, 31);
   const TestData loose = synthetic_test("loose", truth, 0.95, 0.1, 0.2, 32);
   FitOptions options =
@@ -112,9 +115,7 @@ TEST(FitIdentifiability, TheLooseSlopeIsFittedBackOnlyWhereATestStartsLoose) {
 // n_G, the pressure exponent of the moduli, from a drained and an undrained test (whose p' path
 // follows K(p)), started from DM04's 1/2.
 TEST(FitIdentifiability, TheElasticExponentIsFittedBack) {
-  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
-  truth[fit_parameter_index("h0")] = 5.0;
-  truth[fit_parameter_index("n_G")] = 0.2;
+  const FitVector truth = toyoura_truth({{"h0", 5.0}, {"n_G", 0.2}});
   const std::vector<TestData> tests = {
       synthetic_test("dense", truth, 0.70, 0.1, 0.2, 41),
       synthetic_test("undrained", truth, 0.80, 0.1, 0.2, 42, TestPath::kUndrainedCompression,
@@ -131,10 +132,7 @@ TEST(FitIdentifiability, TheElasticExponentIsFittedBack) {
 // n_F, the state exponent of the fabric rate, from a dense and a loose test's a_c histories
 // (psi < 0 and > 0), started from LD12's constant rate: the fabric stage alone fits it with k_F.
 TEST(FitIdentifiability, TheFabricRatesStateExponentIsFittedBack) {
-  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
-  truth[fit_parameter_index("h0")] = 5.0;
-  truth[fit_parameter_index("k_F")] = 8.0;
-  truth[fit_parameter_index("n_F")] = 6.0;
+  const FitVector truth = toyoura_truth({{"h0", 5.0}, {"k_F", 8.0}, {"n_F", 6.0}});
   const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 51),
                                        synthetic_test("loose", truth, 0.95, 0.1, 0.2, 52)};
   FitOptions options;
@@ -148,7 +146,7 @@ TEST(FitIdentifiability, TheFabricRatesStateExponentIsFittedBack) {
 }
 
 TEST(FitThreads, SameResultForAnyThreadCountAndHeldOutTestsArePredicted) {
-  FitVector truth = to_fit_vector(testing::toyoura(), 0.8);
+  const FitVector truth = toyoura_truth({});
   const std::vector<TestData> tests = {synthetic_test("dense", truth, 0.70, 0.1, 0.2, 21),
                                        synthetic_test("loose", truth, 0.88, 0.1, 0.2, 22)};
   FitOptions options =
