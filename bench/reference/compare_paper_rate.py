@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """The paper-size runs at 20 /s against the recorded reference run (issue 16, point 4).
 
-usage: compare_paper_rate.py RUN.h5 [RUN.h5 ...] [--png OUT.png]
+usage: compare_paper_rate.py RUN.h5|SERIES.csv [...] [--reference SERIES.csv] [--png OUT.png]
 
 Prints a markdown table of the measures the issue compares (peak q/p and its strain, the mean q/p
 over 20-25 % as the critical one, the volumetric strain at 10 and 25 %) for the reference
-(bench/reference/dense_100kPa_series.csv, 50 /s) and each run, with the run's worst lateral
+(by default the recorded bench/reference/dense_100kPa_series.csv, 50 /s, old engine; or the
+series CSV given by --reference) and each run, with the run's worst lateral
 stress error after 0.5 % of axial strain, its largest inertial number, steps and shearing wall
 time; overlays q/p and the volumetric strain in OUT.png. (The reduced data kept in the repository
 are the series CSVs `sffcal` writes beside each run, RUN.h5.series.csv.)
@@ -44,11 +45,15 @@ def measures(s):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("runs", nargs="+")
+    ap.add_argument("--reference", default=REFERENCE, help="series CSV of the reference run")
     ap.add_argument("--png")
     a = ap.parse_args()
 
-    curves = [("reference, 50 /s (dense_100kPa_series.csv)", runfile.read_csv_table(REFERENCE), {})]
+    curves = [(f"reference ({os.path.basename(a.reference)})", runfile.read_csv_table(a.reference), {})]
     for path in a.runs:
+        if path.endswith(".csv"):  # a committed series (no summary: steps and time unknown)
+            curves.append((os.path.basename(path), runfile.read_csv_table(path), {}))
+            continue
         with h5py.File(path, "r") as f:
             s = runfile.series(f)
             summary = runfile.summary(f) or {}
