@@ -11,6 +11,7 @@ install(FILES
   calibration/include/calibration/acst_model_impl.h
   calibration/include/calibration/acst_implicit.h
   calibration/include/calibration/umat.h
+  calibration/include/calibration/network_model.h
   DESTINATION include/calibration)
 set(SFFCAL_INSTALL_FE_MODEL OFF)
 if(TARGET fe_model)
@@ -22,6 +23,7 @@ if(TARGET fe_model)
     fe_model/include/fe_model/solid.h
     fe_model/include/fe_model/triaxial.h
     fe_model/include/fe_model/acst_material.h
+    fe_model/include/fe_model/network_material.h
     DESTINATION include/fe_model)
 endif()
 

@@ -5,7 +5,6 @@
 // usage: paper_fit FITTED... [--hold-out HELD...] [--threads N] [--range NAME=LOW:HIGH ...]
 //   e.g. build/bench/paper_fit dense_100kPa loose_200kPa --hold-out dense_300kPa
 // Prints the summary of `sffcal calibrate` (errors per test, parameters, stages).
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -13,7 +12,7 @@
 #include <vector>
 
 #include "calibration/fit.h"
-#include "sffcal/constants.h"
+#include "reference_tests.h"
 
 int main(int argc, char** argv) {
   try {
@@ -37,20 +36,11 @@ int main(int argc, char** argv) {
                            "[--range NAME=LOW:HIGH ...]\n");
       return 2;
     }
-    const std::string folder = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
-    const double friction = std::tan(sffcal::kPi / 6.0);  // the runs' shearing friction, tan 30 deg
-    auto read = [&](const std::vector<std::string>& names) {
-      std::vector<calibration::TestData> tests;
-      for (const std::string& n : names)
-        tests.push_back(calibration::read_csv_pair(folder + n + "_series.csv",
-                                                   folder + n + "_sff.csv", n, friction));
-      return tests;
-    };
     calibration::FitOptions options;
     options.threads = threads;
     for (const std::string& range : ranges) calibration::set_search_range(options, range);
-    calibration::CalibrationResult result = calibration::calibrate(read(fitted), options);
-    calibration::predict(read(held), options, result);
+    calibration::CalibrationResult result = calibration::calibrate(bench::read_reference_tests(fitted), options);
+    calibration::predict(bench::read_reference_tests(held), options, result);
     std::printf("%s", calibration::summary_markdown(result).c_str());
     return 0;
   } catch (const std::exception& e) {

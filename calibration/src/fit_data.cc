@@ -81,6 +81,11 @@ void fill_from_tables(TestData& t, const std::map<std::string, std::vector<doubl
   t.a_n = column(sff, "a_n", sff_where);
   t.mobilisation = column(sff, "m", sff_where);
   t.snapshot_eta = column(sff, "eta", sff_where);
+  if (sff.count("coordination") && sff.count("lambda") && sff.count("a_t")) {
+    t.coordination = column(sff, "coordination", sff_where);
+    t.lambda = column(sff, "lambda", sff_where);
+    t.a_t = column(sff, "a_t", sff_where);
+  }
   set_initial_state(t);
 }
 
@@ -154,6 +159,9 @@ TestData read_run_file(const std::string& path) {
   t.a_n = dem.sff.a_n;
   t.mobilisation = dem.sff.m;
   t.snapshot_eta = dem.sff.eta;
+  t.coordination = dem.sff.coordination;
+  t.lambda = dem.sff.lambda;
+  t.a_t = dem.sff.a_t;
   set_initial_state(t);
   validate_test_data(t);
   return t;
@@ -195,18 +203,24 @@ void validate_test_data(const TestData& t) {
            " at row " + std::to_string(k) + " (path " + to_string(t.path) + ")");
   const std::size_t m = t.snapshot_axial_strain.size();
   if (m < 1) fail("no snapshot in the SFF table (the initial fabric comes from the first)");
+  auto check_snapshots = [&](const char* name, const std::vector<double>& values) {
+    if (values.size() != m)
+      fail(std::string("SFF column '") + name + "' has " + std::to_string(values.size()) +
+           " rows, axial_strain " + std::to_string(m));
+    for (std::size_t k = 0; k < m; ++k)
+      if (!std::isfinite(values[k]))
+        fail(std::string("SFF column '") + name + "' snapshot " + std::to_string(k) +
+             " is not finite");
+  };
   const std::pair<const char*, const std::vector<double>*> snaps[] = {
       {"a_c", &t.a_c}, {"a_n", &t.a_n}, {"m", &t.mobilisation}, {"eta", &t.snapshot_eta},
       {"axial_strain", &t.snapshot_axial_strain}};
-  for (const auto& [name, values] : snaps) {
-    if (values->size() != m)
-      fail(std::string("SFF column '") + name + "' has " + std::to_string(values->size()) +
-           " rows, axial_strain " + std::to_string(m));
-    for (std::size_t k = 0; k < m; ++k)
-      if (!std::isfinite((*values)[k]))
-        fail(std::string("SFF column '") + name + "' snapshot " + std::to_string(k) +
-             " is not finite");
-  }
+  for (const auto& [name, values] : snaps) check_snapshots(name, *values);
+  // Optional: only the contact-network model reads them.
+  const std::pair<const char*, const std::vector<double>*> network[] = {
+      {"coordination", &t.coordination}, {"lambda", &t.lambda}, {"a_t", &t.a_t}};
+  for (const auto& [name, values] : network)
+    if (!values->empty()) check_snapshots(name, *values);
   if (!(t.p0 > 0.0)) fail("initial p must be > 0 Pa");
   if (!is_admissible_void_ratio(t.e0)) fail("initial void ratio must lie in (0, 2.97)");
   if (!(t.friction >= 0.0)) fail("friction must be >= 0");

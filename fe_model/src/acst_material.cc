@@ -1,6 +1,8 @@
 // The ACST adapter: calibration::update_with_tangent behind fe_model::Material.
 #include "fe_model/acst_material.h"
 
+#include "tensor_conversion.h"
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -10,31 +12,10 @@
 namespace fe_model {
 namespace {
 
-Eigen::Matrix3d to_eigen(const SymmetricTensor2& t) {
-  Eigen::Matrix3d m;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m(i, j) = t[i][j];
-  return m;
-}
-
-SymmetricTensor2 to_deal(const Eigen::Matrix3d& m) {
-  SymmetricTensor2 t;
-  for (unsigned int i = 0; i < 3; ++i)
-    for (unsigned int j = i; j < 3; ++j) t[i][j] = 0.5 * (m(i, j) + m(j, i));
-  return t;
-}
-
-void pack(const Eigen::Matrix3d& m, std::vector<double>& v, std::size_t offset) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) v[offset + static_cast<std::size_t>(3 * i + j)] = m(i, j);
-}
-
-Eigen::Matrix3d unpack(const std::vector<double>& v, std::size_t offset) {
-  Eigen::Matrix3d m;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m(i, j) = v[offset + static_cast<std::size_t>(3 * i + j)];
-  return m;
-}
+using internal::pack;
+using internal::to_deal;
+using internal::to_eigen;
+using internal::unpack;
 
 // The strain increment and the start state, for failure messages.
 std::string describe(const SymmetricTensor2& increment, const calibration::State<double>& s) {

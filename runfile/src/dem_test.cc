@@ -31,17 +31,27 @@ void read_series(const RunFile& file, const Columns& columns) {
   check_lengths(file, "/series", columns);
 }
 
-void read_sff(const RunFile& file, const Columns& columns) {
+// The required columns, then the optional ones: those are read only when the table has all of
+// them (each then of the table's length).
+void read_sff(const RunFile& file, const Columns& required, const Columns& optional) {
   std::map<std::string, std::vector<double>> table;
   for (auto& [name, values] : file.read_table("sff")) table[name] = std::move(values);
-  for (const auto& [name, values] : columns) {
+  for (const auto& [name, values] : required) {
     const auto it = table.find(name);
     if (it == table.end())
       throw std::runtime_error("run file " + file.path() + ": /analysis/sff has no column '" +
                                name + "'");
     *values = std::move(it->second);
   }
-  check_lengths(file, "/analysis/sff", columns);
+  check_lengths(file, "/analysis/sff", required);
+  for (const auto& [name, values] : optional)
+    if (table.count(name) == 0) return;
+  Columns both = required;
+  for (const auto& [name, values] : optional) {
+    *values = std::move(table[name]);
+    both.emplace_back(name, values);
+  }
+  check_lengths(file, "/analysis/sff", both);
 }
 
 }  // namespace
@@ -60,7 +70,8 @@ DemTest read_dem_test(const std::string& path) {
   if (test.analysed) {
     DemTestSff& f = test.sff;
     read_sff(file, {{"axial_strain", &f.axial_strain}, {"p", &f.p}, {"q", &f.q}, {"eta", &f.eta},
-                    {"void_ratio", &f.void_ratio}, {"a_c", &f.a_c}, {"a_n", &f.a_n}, {"m", &f.m}});
+                    {"void_ratio", &f.void_ratio}, {"a_c", &f.a_c}, {"a_n", &f.a_n}, {"m", &f.m}},
+             {{"coordination", &f.coordination}, {"lambda", &f.lambda}, {"a_t", &f.a_t}});
   }
   return test;
 }

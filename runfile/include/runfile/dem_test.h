@@ -23,6 +23,10 @@ struct DemTestSff {
   std::vector<double> p, q, eta;  ///< contact stress [Pa], [Pa], q/p
   std::vector<double> void_ratio;
   std::vector<double> a_c, a_n, m;  ///< fabric, normal-force and mobilisation anisotropies
+  /// The rest of the SFF state (sff-theory.md §1, §3): coordination Z, mean normalised normal
+  /// force Lambda, tangential-force anisotropy a_t. Empty when the table lacks them (reduced
+  /// files of older versions); the contact-network model needs them.
+  std::vector<double> coordination, lambda, a_t;
 };
 
 struct DemTest {

@@ -1,0 +1,25 @@
+// The paper-size runs' committed reduced CSV pairs as calibration tests, for the bench fits:
+// bench/reference/<name>_series.csv and <name>_sff.csv, sheared with friction tan 30 degrees.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "calibration/fit.h"
+#include "sffcal/constants.h"
+
+namespace bench {
+
+inline std::vector<calibration::TestData> read_reference_tests(
+    const std::vector<std::string>& names) {
+  const std::string folder = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
+  const double friction = std::tan(sffcal::kPi / 6.0);  // the runs' shearing friction
+  std::vector<calibration::TestData> tests;
+  for (const std::string& n : names)
+    tests.push_back(calibration::read_csv_pair(folder + n + "_series.csv", folder + n + "_sff.csv",
+                                               n, friction));
+  return tests;
+}
+
+}  // namespace bench

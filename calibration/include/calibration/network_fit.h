@@ -1,0 +1,125 @@
+// The contact-network model (network_model.h) against DEM tests: its state taken from the first
+// snapshot, its laws fitted to the micro histories (Z, Lambda, a_c, a_n, a_t) and the stress along
+// the DEM's own strain path, and its predictions of drained and undrained triaxial tests
+// (docs/network-model.md, "Calibration").
+//
+// Conventions: compression positive, stresses in Pa, strains as fractions.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "calibration/fit.h"
+#include "calibration/network_model.h"
+
+namespace calibration::network {
+
+/// The grain modulus E of the DEM (architecture.md), the normalisation of Lambda [Pa].
+inline constexpr double kDemYoungsModulus = 150e6;
+
+/// x diag(-1, -1, 2) / 3: the axisymmetric deviatoric tensor whose triaxial part t(.) is x.
+template <typename T>
+Tensor<T> axisymmetric(const T& x) {
+  Tensor<T> t = Tensor<T>::Zero();
+  t(0, 0) = t(1, 1) = -x / T(3.0);
+  t(2, 2) = T(2.0) * x / T(3.0);
+  return t;
+}
+
+/// t(X) = X_zz - (X_xx + X_yy)/2 (sff-theory.md §3).
+template <typename T>
+T triaxial_part(const Tensor<T>& x) {
+  return x(2, 2) - T(0.5) * (x(0, 0) + x(1, 1));
+}
+
+/// The state of the test's first snapshot (axisymmetric about z) with the void ratio of its first
+/// series row. Throws std::runtime_error naming the test when its data lack Z, Lambda or a_t.
+State<double> initial_state(const TestData& test);
+
+/// The model along one test, at the union of the DEM's series rows and snapshots (in axial strain
+/// order; `row` / `snapshot` say which DEM row or snapshot a node is, -1 if none).
+struct Curve {
+  std::vector<double> axial_strain, volumetric_strain, void_ratio, p, q, eta, lateral_stress;
+  std::vector<double> coordination, lambda, a_c, a_n, a_t;
+  std::vector<int> row, snapshot;
+  bool complete = true;   ///< false if the path stopped early (message says why)
+  std::string message;
+};
+
+struct FitOptions {
+  double substep_size = 0.05;  ///< rate constant times substep strain (substeps_for)
+  /// Residual scales: (model - DEM) / scale.
+  double eta_scale = 0.05;
+  double stress_scale = 0.02;       ///< relative lateral stress (drained) or p/p0 (undrained)
+  double volumetric_scale = 0.005;  ///< volumetric strain on the predicted drained path
+  double coordination_scale = 0.05;
+  double lambda_scale = 0.02;       ///< relative
+  double anisotropy_scale = 0.05;   ///< a_c, a_n
+  double tangential_scale = 0.005;  ///< a_t
+  int max_iterations = 200;
+  int threads = 1;
+  /// Starts: the first from the given values, the others drawn about them (starting_points);
+  /// the lowest cost of the second stage wins.
+  int starts = 1;
+  std::uint64_t seed = 1;
+};
+
+/// Drives the model along the DEM's measured strain path (axial and volumetric strain, x and y
+/// alike) from initial_state: the stress is the model's, the strains the DEM's.
+Curve follow_strain_path(const Parameters<double>& par, const TestData& test,
+                         const FitOptions& options = {});
+
+/// Predicts the test from initial_state on its own loading path: drained (the lateral stress held
+/// at its initial value, the lateral strain found by Newton) or undrained (constant volume), at
+/// the DEM's axial strains. Stops with complete = false where an increment cannot be solved.
+Curve predict(const Parameters<double>& par, const TestData& test, const FitOptions& options = {});
+
+/// RMS errors of a curve against its test: eta and volumetric strain over the rows after the
+/// first, the micro variables over the snapshots after the first (Lambda relative).
+struct Errors {
+  double eta = 0.0, volumetric = 0.0, p_ratio = 0.0;  ///< p_ratio: RMS (p - p_DEM)/p0
+  double coordination = 0.0, lambda = 0.0, a_c = 0.0, a_n = 0.0, a_t = 0.0;
+};
+Errors compare(const Curve& curve, const TestData& test);
+
+struct FitResult {
+  Parameters<double> parameters;
+  double initial_cost = 0.0, final_cost = 0.0;  ///< of the second stage
+  int iterations = 0;
+  bool converged = false;
+  int start = 0;                    ///< the winning start
+  std::vector<double> start_costs;  ///< each start's final cost (NaN: no usable solution)
+  std::string report;               ///< Ceres' brief reports of the winning start
+};
+
+/// The starting values of the fit (its bounds: lower_bounds, upper_bounds in network_model.h).
+Parameters<double> default_start();
+
+/// The fit's residuals of one test and their Jacobian by the parameters (forward-mode Jets; on
+/// the predicted drained path through the implicit function theorem at each increment's solved
+/// lateral strain), `predicted` choosing the second stage's objective over the first's.
+struct ObjectiveValue {
+  Eigen::VectorXd residuals;
+  Eigen::MatrixXd jacobian;  ///< residuals x kNumParameters
+  bool usable = false;       ///< false where the path left the admissible states
+};
+ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>& par,
+                                  bool predicted, const FitOptions& options = {});
+
+/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed): each
+/// parameter with a positive range multiplied by a log-uniform factor within 3, each signed one
+/// moved uniformly by up to max(|x|, 1); clipped to the bounds.
+std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
+                                                std::uint64_t seed);
+
+/// Fits the parameters by Levenberg-Marquardt within the bounds in two stages: first to the
+/// tests' micro histories and stresses along their DEM strain paths (follow_strain_path), then
+/// to the micro histories, q/p and the volumetric strain (drained) or p (undrained) on the paths
+/// the model predicts (predict). Residuals and their scales: FitOptions.
+FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
+              const FitOptions& options = {});
+
+}  // namespace calibration::network

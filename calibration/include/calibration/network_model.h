@@ -1,0 +1,218 @@
+// The contact-network model: a second material whose stress is the SFF equation of its state
+// (sff-theory.md §4: sigma = E Z Lambda / (1 + e) [I/3 + (2/15)(A + F) + (2/105) tr(FA) I +
+// (8/105) sym(FA) + F^t]) and whose state (e, Z, Lambda, A, F, F^t) is exactly what sff/ measures,
+// so its laws are fitted to the DEM's micro histories directly (issue 19, point 2). In the spirit
+// of He & Cai (Granular Matter 21, 2019), whose evolution laws were not retrieved: every rate law
+// here is ours, derived and justified in docs/network-model.md.
+//
+// Conventions: compression positive (stress, strain, strain increment), stress in Pa, tensor
+// shear components. A, F and F^t are deviatoric. Templated on the scalar type (double or a
+// forward-mode dual number such as ceres::Jet) like acst_model.h; this header needs only Eigen.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace calibration::network {
+
+template <typename T>
+using Tensor = Eigen::Matrix<T, 3, 3>;
+
+/// The reference normal force of the critical coordination line (Eq. N4): Lambda_ref = 1e-3, the
+/// order of Lambda at 100-300 kPa in the DEM (docs/sff-results.md).
+inline constexpr double kLambdaReference = 1e-3;
+
+/// The state of a material point: void ratio e, coordination Z = 2 N_c / N_p, mean normalised
+/// normal force Lambda, and the deviatoric fabric A, normal-force F and tangential-force F^t
+/// anisotropy tensors, all as sff-theory.md §1-3 defines them.
+template <typename T>
+struct State {
+  T void_ratio, coordination, lambda;
+  Tensor<T> fabric, normal, tangential;
+};
+
+/// The fitted parameters (docs/network-model.md, Eqs. N1-N8), all dimensionless. Unset is NaN.
+template <typename T>
+struct Parameters {
+  static T unset() { return T(std::numeric_limits<double>::quiet_NaN()); }
+  T kappa = unset();  ///< stiffness of ln Lambda against volumetric strain (N6)
+  T z_c = unset(), zeta = unset();  ///< critical coordination z_c (Lambda/Lambda_ref)^zeta (N4)
+  T k_z = unset(), c_v = unset();   ///< Z's rate towards Z_c per shear strain; per volume (N5)
+  T a_cs = unset(), a_z = unset(), k_a = unset();  ///< fabric A: critical norm, slope, rate (N2)
+  T f_cs = unset(), f_z = unset(), k_f = unset();  ///< normal force F (N2)
+  T t_cs = unset(), t_z = unset(), k_t = unset();  ///< tangential force F^t (N2)
+  T d_z = unset(), d_a = unset();  ///< dilatancy from coordination and fabric (N7)
+  T n_r = unset();  ///< the anisotropies' rate exponent in the over-coordination (N3)
+  T n_z = unset();  ///< the coordination's rate exponent in the over-coordination (N5)
+};
+
+inline constexpr int kNumParameters = 18;
+/// Names in the order of to_array/from_array.
+inline const std::array<const char*, kNumParameters>& parameter_names() {
+  static const std::array<const char*, kNumParameters> names = {{
+      "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
+      "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z"}};
+  return names;
+}
+
+template <typename T>
+std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
+  return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
+          p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z}};
+}
+
+template <typename T>
+Parameters<T> from_array(const T* x) {
+  Parameters<T> p;
+  p.kappa = x[0], p.z_c = x[1], p.zeta = x[2], p.k_z = x[3], p.c_v = x[4], p.a_cs = x[5];
+  p.a_z = x[6], p.k_a = x[7], p.f_cs = x[8], p.f_z = x[9], p.k_f = x[10], p.t_cs = x[11];
+  p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
+  p.n_z = x[17];
+  return p;
+}
+
+/// The ranges where the model is meant to be used (docs/network-model.md): validate refuses a
+/// parameter outside them and the fit searches within them. c_v >= 0: compression adds contacts.
+inline Parameters<double> lower_bounds() {
+  Parameters<double> p;
+  p.kappa = 10.0, p.z_c = 2.0, p.zeta = 0.0, p.k_z = 0.0, p.c_v = 0.0;
+  p.a_cs = 0.2, p.a_z = -5.0, p.k_a = 1.0;
+  p.f_cs = 0.2, p.f_z = -5.0, p.k_f = 1.0;
+  p.t_cs = 0.0, p.t_z = -1.0, p.k_t = 1.0;
+  p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
+  return p;
+}
+
+inline Parameters<double> upper_bounds() {
+  Parameters<double> p;
+  p.kappa = 1e5, p.z_c = 10.0, p.zeta = 1.0, p.k_z = 1000.0, p.c_v = 100.0;
+  p.a_cs = 3.0, p.a_z = 5.0, p.k_a = 1000.0;
+  p.f_cs = 3.0, p.f_z = 5.0, p.k_f = 3000.0;
+  p.t_cs = 0.5, p.t_z = 1.0, p.k_t = 5000.0;
+  p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
+  return p;
+}
+
+/// Throws std::invalid_argument naming the first parameter that is not finite or lies outside
+/// [lower_bounds, upper_bounds].
+inline void validate(const Parameters<double>& par) {
+  const auto x = to_array(par), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
+  for (int i = 0; i < kNumParameters; ++i)
+    if (!std::isfinite(x[i]) || x[i] < lo[i] || x[i] > hi[i])
+      throw std::invalid_argument(std::string("contact-network parameter ") +
+                                  parameter_names()[i] + " = " + std::to_string(x[i]) +
+                                  " is not within [" + std::to_string(lo[i]) + ", " +
+                                  std::to_string(hi[i]) + "]");
+}
+
+/// The SFF equation (sff-theory.md §4, He & Cai 2019 eq. C0) for the model's state; the grain
+/// modulus E [Pa] is the DEM's (the normalisation of Lambda).
+template <typename T>
+Tensor<T> stress(const State<T>& s, double youngs_modulus) {
+  const Tensor<T>& A = s.fabric;
+  const Tensor<T>& F = s.normal;
+  const Tensor<T> FA = F * A;
+  const Tensor<T> sym_FA = T(0.5) * (FA + FA.transpose());
+  Tensor<T> bracket = T(2.0 / 15.0) * (A + F) + T(8.0 / 105.0) * sym_FA + s.tangential;
+  const T isotropic = T(1.0 / 3.0) + T(2.0 / 105.0) * FA.trace();
+  for (int i = 0; i < 3; ++i) bracket(i, i) += isotropic;
+  return (T(youngs_modulus) * s.coordination * s.lambda / (T(1.0) + s.void_ratio)) * bracket;
+}
+
+/// Z_c(Lambda) = z_c (Lambda / Lambda_ref)^zeta (Eq. N4).
+template <typename T>
+T critical_coordination(const Parameters<T>& par, const T& lambda) {
+  using std::pow;
+  return par.z_c * pow(lambda / T(kLambdaReference), par.zeta);
+}
+
+/// The rate of the state for the strain rate d (compression positive), Eqs. N1-N8: the rates are
+/// homogeneous of degree one in d, so a linear strain increment is integrated over a unit
+/// pseudo-time with d = the increment.
+template <typename T>
+State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
+  using std::exp;
+  using std::sqrt;
+  const T volumetric = d.trace();
+  Tensor<T> deviator = d;
+  for (int i = 0; i < 3; ++i) deviator(i, i) -= volumetric / T(3.0);
+  // eps_q rate = sqrt(2/3 d_s:d_s), with no derivative singularity at a pure volume change.
+  const T shear_squared = (deviator.array() * deviator.array()).sum();
+  const T shear = shear_squared > T(0.0) ? sqrt(T(2.0 / 3.0) * shear_squared) : T(0.0);
+  const T critical = critical_coordination(par, s.lambda);
+  const T excess = (s.coordination - critical) / critical;  // Eq. N3: over-coordination xi
+  const T speed = exp(par.n_r * excess);  // Eq. N3: an over-coordinated network evolves faster
+  // Eq. N2: each anisotropy relaxes towards (x_cs + x_z xi) in the direction of shear,
+  // (2/3) d_s = eps_q-rate times the unit triaxial direction (t(.) = 1 in compression).
+  auto towards = [&](const T& critical_norm, const T& slope, const T& rate_constant,
+                     const Tensor<T>& x) -> Tensor<T> {
+    return rate_constant * speed *
+           (T(2.0 / 3.0) * (critical_norm + slope * excess) * deviator - shear * x);
+  };
+  State<T> r;
+  r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
+  r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric);
+  r.normal = towards(par.f_cs, par.f_z, par.k_f, s.normal);
+  r.tangential = towards(par.t_cs, par.t_z, par.k_t, s.tangential);
+  r.coordination =
+      par.k_z * exp(par.n_z * excess) * shear * (critical - s.coordination) +
+      par.c_v * volumetric;  // N5
+  // Eq. N7: the dilatancy times the shear rate; A:d_s = a_d eps_q-rate, a_d the fabric's norm
+  // along the shear direction.
+  const T dilatancy_rate =
+      par.d_z * excess * shear + par.d_a * ((s.fabric.array() * deviator.array()).sum() -
+                                            par.a_cs * shear);
+  r.lambda = s.lambda * par.kappa / T(3.0) * (volumetric + dilatancy_rate);  // Eq. N6
+  return r;
+}
+
+template <typename T>
+State<T> add_scaled(const State<T>& s, const State<T>& r, const T& h) {
+  return {s.void_ratio + h * r.void_ratio, s.coordination + h * r.coordination,
+          s.lambda + h * r.lambda,         s.fabric + h * r.fabric,
+          s.normal + h * r.normal,         s.tangential + h * r.tangential};
+}
+
+/// Integrates a linear strain increment (compression positive) with `substeps` classical
+/// fourth-order Runge-Kutta steps. The substep count is the caller's, so that a Newton iteration
+/// on the increment sees one smooth function (substeps_for gives the usual choice).
+template <typename T>
+State<T> integrate(const Parameters<T>& par, const State<T>& start, const Tensor<T>& increment,
+                   int substeps) {
+  const T h = T(1.0 / substeps);
+  State<T> s = start;
+  for (int k = 0; k < substeps; ++k) {
+    const State<T> k1 = rate(par, s, increment);
+    const State<T> k2 = rate(par, add_scaled(s, k1, T(0.5) * h), increment);
+    const State<T> k3 = rate(par, add_scaled(s, k2, T(0.5) * h), increment);
+    const State<T> k4 = rate(par, add_scaled(s, k3, h), increment);
+    State<T> sum = add_scaled(add_scaled(add_scaled(k1, k2, T(2.0)), k3, T(2.0)), k4, T(1.0));
+    s = add_scaled(s, sum, h / T(6.0));
+  }
+  return s;
+}
+
+/// Substeps so that no rate constant times a substep's strain exceeds `step_size` (0.05: RK4's
+/// local error then ~ 0.05^5 / 120 of the change, well below the DEM's noise), at the rate factor
+/// exp(n_r xi) of the state `at` (the start of the increment). The stiffest coupling may be ln
+/// Lambda's through Z_c(Lambda) in the dilatancy, kappa d_z zeta / 3.
+inline int substeps_for(const Parameters<double>& par, const State<double>& at,
+                        double strain_norm, double step_size = 0.05) {
+  const double critical = critical_coordination(par, at.lambda);
+  const double excess = (at.coordination - critical) / critical;
+  const double speed = std::exp(std::min(par.n_r * excess, 30.0));
+  const double stiffest = std::max(
+      {speed * std::max({par.k_a, par.k_f, par.k_t}),
+       par.k_z * std::exp(std::min(par.n_z * excess, 30.0)), par.kappa / 3.0,
+       par.kappa / 3.0 * (std::abs(par.d_z) * std::abs(par.zeta) + std::abs(par.d_a)), 1.0});
+  const double n = std::ceil(stiffest * strain_norm / step_size);
+  return !(n < 1e6) ? 1000000 : n < 1.0 ? 1 : static_cast<int>(n);
+}
+
+}  // namespace calibration::network

@@ -1,0 +1,513 @@
+// The contact-network model against DEM tests: paths, errors and the fit (network_fit.h).
+#include "calibration/network_fit.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace calibration::network {
+namespace {
+
+double value(double x) { return x; }
+template <int N>
+double value(const ceres::Jet<double, N>& x) {
+  return x.a;
+}
+
+template <typename T>
+Parameters<double> values(const Parameters<T>& par) {
+  auto in = to_array(par);
+  std::array<double, kNumParameters> out;
+  for (int i = 0; i < kNumParameters; ++i) out[i] = value(in[i]);
+  return from_array(out.data());
+}
+
+// Applies f to every scalar of a state (e, Z, Lambda and the tensors' components).
+template <typename R, typename S, typename F>
+State<R> map_state(const State<S>& s, F f) {
+  return {f(s.void_ratio), f(s.coordination), f(s.lambda), s.fabric.unaryExpr(f),
+          s.normal.unaryExpr(f), s.tangential.unaryExpr(f)};
+}
+
+template <typename T>
+State<T> cast(const State<double>& s) {
+  return map_state<T>(s, [](double x) { return T(x); });
+}
+
+template <typename T>
+State<double> state_values(const State<T>& s) {
+  return map_state<double>(s, [](const T& x) { return value(x); });
+}
+
+template <typename T>
+bool admissible(const State<T>& s) {
+  const double values[] = {value(s.void_ratio), value(s.coordination), value(s.lambda)};
+  for (double v : values)
+    if (!std::isfinite(v) || !(v > 0.0)) return false;
+  return std::isfinite(value(s.fabric.norm())) && std::isfinite(value(s.normal.norm())) &&
+         std::isfinite(value(s.tangential.norm()));
+}
+
+/// One node of a test's path: the DEM's axial and volumetric strain there and which row and
+/// snapshot it is.
+struct Node {
+  double axial, volumetric;
+  int row, snapshot;
+};
+
+// The DEM's volumetric strain at an axial strain, linear between its rows.
+double volumetric_at(const TestData& t, double axial) {
+  const auto& x = t.axial_strain;
+  const double direction = axial_direction(t.path);
+  std::size_t k = 1;
+  while (k + 1 < x.size() && direction * (x[k] - axial) < 0.0) ++k;
+  const double w = (axial - x[k - 1]) / (x[k] - x[k - 1]);
+  return t.volumetric_strain[k - 1] + w * (t.volumetric_strain[k] - t.volumetric_strain[k - 1]);
+}
+
+// Rows and snapshots merged in the path's direction; a snapshot within 1e-9 of a row shares its
+// node; snapshots past the last row are left out.
+std::vector<Node> path_nodes(const TestData& t) {
+  const double direction = axial_direction(t.path);
+  std::vector<Node> nodes;
+  std::size_t s = 0;
+  for (std::size_t r = 0; r < t.axial_strain.size(); ++r) {
+    const double a = t.axial_strain[r];
+    while (s < t.snapshot_axial_strain.size() &&
+           direction * (t.snapshot_axial_strain[s] - a) < -1e-9) {
+      const double as = t.snapshot_axial_strain[s];
+      if (direction * (as - t.axial_strain.front()) > 0.0)
+        nodes.push_back({as, volumetric_at(t, as), -1, static_cast<int>(s)});
+      ++s;
+    }
+    int snapshot = -1;
+    if (s < t.snapshot_axial_strain.size() &&
+        std::abs(t.snapshot_axial_strain[s] - a) <= 1e-9)
+      snapshot = static_cast<int>(s++);
+    nodes.push_back({a, t.volumetric_strain[r], static_cast<int>(r), snapshot});
+  }
+  // The first snapshot is the initial state, taken at the first row.
+  if (!nodes.empty() && nodes.front().snapshot < 0) nodes.front().snapshot = 0;
+  return nodes;
+}
+
+template <typename T>
+Tensor<T> strain_increment(const T& axial, const T& lateral) {
+  Tensor<T> d = Tensor<T>::Zero();
+  d(0, 0) = d(1, 1) = lateral;
+  d(2, 2) = axial;
+  return d;
+}
+
+void record(Curve& c, const State<double>& s, double axial, double volumetric, const Node& node) {
+  const Tensor<double> sigma = stress(s, kDemYoungsModulus);
+  const double p = sigma.trace() / 3.0;
+  const double q = triaxial_part(sigma);
+  c.axial_strain.push_back(axial);
+  c.volumetric_strain.push_back(volumetric);
+  c.void_ratio.push_back(s.void_ratio);
+  c.p.push_back(p);
+  c.q.push_back(q);
+  c.eta.push_back(q / p);
+  c.lateral_stress.push_back(sigma(0, 0));
+  c.coordination.push_back(s.coordination);
+  c.lambda.push_back(s.lambda);
+  c.a_c.push_back(triaxial_part(s.fabric));
+  c.a_n.push_back(triaxial_part(s.normal));
+  c.a_t.push_back(triaxial_part(s.tangential));
+  c.row.push_back(node.row);
+  c.snapshot.push_back(node.snapshot);
+}
+
+template <typename Dual>
+Parameters<Dual> lift_parameters(const Parameters<double>& par) {
+  const auto x = to_array(par);
+  std::array<Dual, kNumParameters> y;
+  for (int i = 0; i < kNumParameters; ++i) y[i] = Dual(x[i]);
+  return from_array(y.data());
+}
+
+// Substeps of a drained increment, fixed for it (from the axial strain and a lateral one of half
+// its size), so that the Newton iterates on one smooth function.
+int drained_substeps(const Parameters<double>& par, const State<double>& start, double da,
+                     const FitOptions& options) {
+  return substeps_for(par, start, std::abs(da) * std::sqrt(1.5), options.substep_size);
+}
+
+// Solves one drained increment: the lateral strain increment that brings sigma_xx to `target`,
+// by Newton with the derivative from a one-component Jet. Returns false if it does not converge.
+bool drained_increment(const Parameters<double>& par, const State<double>& start, double da,
+                       double target, double& lateral, State<double>& end,
+                       const FitOptions& options) {
+  using Dual = ceres::Jet<double, 1>;
+  const Parameters<Dual> par_dual = lift_parameters<Dual>(par);
+  const State<Dual> s0 = cast<Dual>(start);
+  const int substeps = drained_substeps(par, start, da, options);
+  for (int it = 0; it < 50; ++it) {
+    const State<Dual> s = integrate(par_dual, s0,
+                                    strain_increment(Dual(da), Dual(lateral, 0)), substeps);
+    if (!admissible(s)) return false;
+    const Dual g = stress(s, kDemYoungsModulus)(0, 0) / target - Dual(1.0);
+    if (std::abs(g.a) < 1e-11) {
+      end = integrate(par, start, strain_increment(da, lateral), substeps);
+      return true;
+    }
+    if (!(std::abs(g.v[0]) > 0.0)) return false;
+    double step = -g.a / g.v[0];
+    const double cap = 2.0 * std::abs(da) + 1e-12;  // no wild first steps
+    step = std::clamp(step, -cap, cap);
+    lateral += step;
+  }
+  return false;
+}
+
+// The same with parameter derivatives (T a Jet of N): the lateral strain increment solved in doubles,
+// its derivatives from the implicit function theorem, dx/dtheta = -g_theta / g_x, with g and the
+// end state evaluated once in Jets of N + 1 (the last component seeded on x).
+template <int N>
+bool drained_increment(const Parameters<ceres::Jet<double, N>>& par,
+                       const State<ceres::Jet<double, N>>& start, double da, double target,
+                       ceres::Jet<double, N>& lateral, State<ceres::Jet<double, N>>& end,
+                       const FitOptions& options) {
+  using J = ceres::Jet<double, N>;
+  using Ext = ceres::Jet<double, N + 1>;
+  const Parameters<double> par_values = values(par);
+  double x = value(lateral);
+  State<double> end_values;
+  const State<double> start_values = state_values(start);
+  if (!drained_increment(par_values, start_values, da, target, x, end_values, options))
+    return false;
+  auto extend = [](const J& y) {
+    Ext r(y.a);
+    for (int i = 0; i < N; ++i) r.v[i] = y.v[i];
+    return r;
+  };
+  std::array<Ext, kNumParameters> par_ext;
+  const auto par_jets = to_array(par);
+  for (int i = 0; i < kNumParameters; ++i) par_ext[i] = extend(par_jets[i]);
+  const State<Ext> s = integrate(from_array(par_ext.data()), map_state<Ext>(start, extend),
+                                 strain_increment(Ext(da), Ext(x, N)),
+                                 drained_substeps(par_values, start_values, da, options));
+  const Ext g = stress(s, kDemYoungsModulus)(0, 0) / target;
+  if (!(std::abs(g.v[N]) > 0.0)) return false;
+  std::array<double, N> dx;
+  for (int i = 0; i < N; ++i) dx[i] = -g.v[i] / g.v[N];
+  auto total = [&](const Ext& y) {
+    J r(y.a);
+    for (int i = 0; i < N; ++i) r.v[i] = y.v[i] + y.v[N] * dx[i];
+    return r;
+  };
+  end = map_state<J>(s, total);
+  lateral = J(x);
+  for (int i = 0; i < N; ++i) lateral.v[i] = dx[i];
+  return true;
+}
+
+// Residuals of one test (the fit's objective), per node after the first: at a row eta and a
+// residual of the path, at a snapshot the five micro variables. Along the DEM's strain path
+// (predicted = false) the path residual is the model's lateral stress against its initial value
+// (drained) or p/p0 against the DEM's (undrained); on the predicted path (drained: lateral stress
+// held) it is the volumetric strain against the DEM's.
+struct PathObjective {
+  const TestData* test;
+  std::vector<Node> nodes;
+  State<double> start;
+  FitOptions options;
+  bool predicted = false;
+
+  int num_residuals() const {
+    int n = 0;
+    for (std::size_t k = 1; k < nodes.size(); ++k)
+      n += (nodes[k].row >= 0 ? 2 : 0) + (nodes[k].snapshot >= 0 ? 5 : 0);
+    return n;
+  }
+
+  template <typename T>
+  bool evaluate(const Parameters<T>& par, T* residual) const {
+    const TestData& t = *test;
+    const Parameters<double> par_values = values(par);
+    const bool drained = holds_lateral_stress(t.path);
+    State<T> s = cast<T>(start);
+    const Tensor<T> sigma0 = stress(s, kDemYoungsModulus);
+    const T lateral0 = sigma0(0, 0), p0 = sigma0.trace() / T(3.0);
+    T volumetric(0.0);
+    double lateral_ratio = -0.3;  // the first guess of a drained increment's lateral strain
+    int n = 0;
+    for (std::size_t k = 1; k < nodes.size(); ++k) {
+      const double da = nodes[k].axial - nodes[k - 1].axial;
+      if (predicted && drained) {
+        T lateral(lateral_ratio * da);
+        State<T> end;
+        if (!drained_increment(par, s, da, value(lateral0), lateral, end, options)) return false;
+        lateral_ratio = value(lateral) / da;
+        s = end;
+        volumetric += T(da) + T(2.0) * lateral;
+      } else {
+        const double dv = predicted ? 0.0 : nodes[k].volumetric - nodes[k - 1].volumetric;
+        const double dr = 0.5 * (dv - da);
+        s = integrate(par, s, strain_increment(T(da), T(dr)),
+                      substeps_for(par_values, state_values(s),
+                                   std::sqrt(da * da + 2.0 * dr * dr), options.substep_size));
+      }
+      if (!admissible(s)) return false;
+      if (nodes[k].row >= 0) {
+        const std::size_t r = nodes[k].row;
+        const Tensor<T> sigma = stress(s, kDemYoungsModulus);
+        const T p = sigma.trace() / T(3.0);
+        residual[n++] = liquefied_at_row(t, r)
+                            ? T(0.0)
+                            : (triaxial_part(sigma) / p - t.eta[r]) / options.eta_scale;
+        if (!drained)
+          residual[n++] = (p / p0 - T(t.p[r] / t.p0)) / options.stress_scale;
+        else if (predicted)
+          residual[n++] = (volumetric - t.volumetric_strain[r]) / options.volumetric_scale;
+        else
+          residual[n++] = (sigma(0, 0) / lateral0 - T(1.0)) / options.stress_scale;
+      }
+      if (nodes[k].snapshot >= 0) {
+        const std::size_t m = nodes[k].snapshot;
+        residual[n++] = (s.coordination - t.coordination[m]) / options.coordination_scale;
+        residual[n++] = (s.lambda / t.lambda[m] - T(1.0)) / options.lambda_scale;
+        residual[n++] = (triaxial_part(s.fabric) - t.a_c[m]) / options.anisotropy_scale;
+        residual[n++] = (triaxial_part(s.normal) - t.a_n[m]) / options.anisotropy_scale;
+        residual[n++] = (triaxial_part(s.tangential) - t.a_t[m]) / options.tangential_scale;
+      }
+    }
+    return true;
+  }
+};
+
+struct TestCost {
+  PathObjective objective;
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    return objective.evaluate(from_array(x), residual);
+  }
+};
+
+}  // namespace
+
+State<double> initial_state(const TestData& t) {
+  if (t.coordination.empty() || t.lambda.empty() || t.a_t.empty())
+    throw std::runtime_error("test '" + t.name + "' (" + t.source +
+                             "): its SFF table has no coordination, lambda or a_t, which the "
+                             "contact-network model starts from (run `sffcal sff` again)");
+  return {t.e0,
+          t.coordination.front(),
+          t.lambda.front(),
+          axisymmetric(t.a_c.front()),
+          axisymmetric(t.a_n.front()),
+          axisymmetric(t.a_t.front())};
+}
+
+Curve follow_strain_path(const Parameters<double>& par, const TestData& t,
+                         const FitOptions& options) {
+  validate(par);
+  const std::vector<Node> nodes = path_nodes(t);
+  State<double> s = initial_state(t);
+  Curve c;
+  record(c, s, nodes.front().axial, nodes.front().volumetric, nodes.front());
+  for (std::size_t k = 1; k < nodes.size(); ++k) {
+    const double da = nodes[k].axial - nodes[k - 1].axial;
+    const double dr = 0.5 * ((nodes[k].volumetric - nodes[k - 1].volumetric) - da);
+    s = integrate(par, s, strain_increment(da, dr),
+                  substeps_for(par, s, std::sqrt(da * da + 2.0 * dr * dr), options.substep_size));
+    if (!admissible(s)) {
+      c.complete = false;
+      c.message = "the state left its admissible range at axial strain " +
+                  std::to_string(nodes[k].axial);
+      return c;
+    }
+    record(c, s, nodes[k].axial, nodes[k].volumetric, nodes[k]);
+  }
+  return c;
+}
+
+Curve predict(const Parameters<double>& par, const TestData& t, const FitOptions& options) {
+  validate(par);
+  const std::vector<Node> nodes = path_nodes(t);
+  State<double> s = initial_state(t);
+  const double target = stress(s, kDemYoungsModulus)(0, 0);
+  const bool drained = holds_lateral_stress(t.path);
+  if (!drained && !is_undrained(t.path))
+    throw std::runtime_error("test '" + t.name + "': the contact-network model predicts drained "
+                             "and undrained triaxial paths, not " + to_string(t.path));
+  Curve c;
+  double volumetric = 0.0, lateral_ratio = -0.3;
+  record(c, s, nodes.front().axial, volumetric, nodes.front());
+  for (std::size_t k = 1; k < nodes.size(); ++k) {
+    const double da = nodes[k].axial - nodes[k - 1].axial;
+    double dr = -0.5 * da;
+    State<double> end;
+    if (drained) {
+      dr = lateral_ratio * da;
+      if (!drained_increment(par, s, da, target, dr, end, options)) {
+        c.complete = false;
+        c.message = "no lateral strain holds the lateral stress at axial strain " +
+                    std::to_string(nodes[k].axial);
+        return c;
+      }
+      lateral_ratio = dr / da;
+    } else {
+      end = integrate(par, s, strain_increment(da, dr),
+                      substeps_for(par, s, std::abs(da) * std::sqrt(1.5), options.substep_size));
+    }
+    if (!admissible(end)) {
+      c.complete = false;
+      c.message = "the state left its admissible range at axial strain " +
+                  std::to_string(nodes[k].axial);
+      return c;
+    }
+    s = end;
+    volumetric += da + 2.0 * dr;
+    record(c, s, nodes[k].axial, volumetric, nodes[k]);
+  }
+  return c;
+}
+
+Errors compare(const Curve& c, const TestData& t) {
+  Errors e;
+  double n_rows = 0, n_snaps = 0;
+  for (std::size_t k = 1; k < c.axial_strain.size(); ++k) {
+    if (c.row[k] >= 0) {
+      const std::size_t r = c.row[k];
+      if (!liquefied_at_row(t, r)) e.eta += std::pow(c.eta[k] - t.eta[r], 2);
+      e.volumetric += std::pow(c.volumetric_strain[k] - t.volumetric_strain[r], 2);
+      e.p_ratio += std::pow((c.p[k] - t.p[r]) / t.p0, 2);
+      ++n_rows;
+    }
+    if (c.snapshot[k] >= 0 && !t.coordination.empty()) {
+      const std::size_t m = c.snapshot[k];
+      e.coordination += std::pow(c.coordination[k] - t.coordination[m], 2);
+      e.lambda += std::pow(c.lambda[k] / t.lambda[m] - 1.0, 2);
+      e.a_c += std::pow(c.a_c[k] - t.a_c[m], 2);
+      e.a_n += std::pow(c.a_n[k] - t.a_n[m], 2);
+      e.a_t += std::pow(c.a_t[k] - t.a_t[m], 2);
+      ++n_snaps;
+    }
+  }
+  auto rms = [](double& sum, double n) { sum = n > 0 ? std::sqrt(sum / n) : 0.0; };
+  for (double* x : {&e.eta, &e.volumetric, &e.p_ratio}) rms(*x, n_rows);
+  for (double* x : {&e.coordination, &e.lambda, &e.a_c, &e.a_n, &e.a_t}) rms(*x, n_snaps);
+  return e;
+}
+
+Parameters<double> default_start() {
+  Parameters<double> p;
+  p.kappa = 1000.0, p.z_c = 4.4, p.zeta = 0.2, p.k_z = 20.0, p.c_v = 0.0;
+  p.a_cs = 1.05, p.a_z = 1.0, p.k_a = 30.0;
+  p.f_cs = 1.05, p.f_z = 1.0, p.k_f = 100.0;
+  p.t_cs = 0.085, p.t_z = 0.1, p.k_t = 200.0;
+  p.d_z = 3.0, p.d_a = 2.0, p.n_r = 0.0, p.n_z = 0.0;
+  return p;
+}
+
+namespace {
+
+// One Levenberg-Marquardt solve of the objective (along the DEM's strain paths or on the
+// predicted ones) from x, within the bounds; x holds the result.
+ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
+                             const FitOptions& options, std::array<double, kNumParameters>& x) {
+  ceres::Problem problem;
+  for (const TestData& t : tests) {
+    PathObjective objective{&t, path_nodes(t), initial_state(t), options, predicted};
+    const int residuals = objective.num_residuals();
+    auto* cost = new ceres::AutoDiffCostFunction<TestCost, ceres::DYNAMIC, kNumParameters>(
+        new TestCost{std::move(objective)}, residuals);
+    problem.AddResidualBlock(cost, nullptr, x.data());
+  }
+  const auto lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
+  for (int i = 0; i < kNumParameters; ++i) {
+    problem.SetParameterLowerBound(x.data(), i, lo[i]);
+    problem.SetParameterUpperBound(x.data(), i, hi[i]);
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = options.threads;
+  solver.function_tolerance = 1e-8;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  return summary;
+}
+
+}  // namespace
+
+std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
+                                                std::uint64_t seed) {
+  std::vector<Parameters<double>> points = {start};
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto x = to_array(start), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
+  for (int k = 1; k < starts; ++k) {
+    std::array<double, kNumParameters> y;
+    for (int i = 0; i < kNumParameters; ++i) {
+      // Positive ranges: a factor of up to 3 either way; signed ones: +- max(|x|, 1).
+      y[i] = lo[i] >= 0.0 && x[i] > 0.0 ? x[i] * std::exp(std::log(3.0) * unit(random))
+                                        : x[i] + unit(random) * std::max(std::abs(x[i]), 1.0);
+      y[i] = std::clamp(y[i], lo[i], hi[i]);
+    }
+    points.push_back(from_array(y.data()));
+  }
+  return points;
+}
+
+ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>& par,
+                                  bool predicted, const FitOptions& options) {
+  validate(par);
+  PathObjective objective{&test, path_nodes(test), initial_state(test), options, predicted};
+  const int n = objective.num_residuals();
+  ceres::AutoDiffCostFunction<TestCost, ceres::DYNAMIC, kNumParameters> cost(
+      new TestCost{std::move(objective)}, n);
+  const std::array<double, kNumParameters> x = to_array(par);
+  const double* parameters[] = {x.data()};
+  ObjectiveValue value;
+  value.residuals.resize(n);
+  Eigen::Matrix<double, Eigen::Dynamic, kNumParameters, Eigen::RowMajor> jacobian(n, kNumParameters);
+  double* jacobians[] = {jacobian.data()};
+  value.usable = cost.Evaluate(parameters, value.residuals.data(), jacobians);
+  value.jacobian = jacobian;
+  return value;
+}
+
+FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
+              const FitOptions& options) {
+  validate(start);
+  if (tests.empty()) throw std::invalid_argument("contact-network fit: no test to fit");
+  if (options.starts < 1) throw std::invalid_argument("contact-network fit: starts must be >= 1");
+  FitResult best;
+  bool found = false;
+  int k = 0;
+  for (const Parameters<double>& point : starting_points(start, options.starts, options.seed)) {
+    std::array<double, kNumParameters> x = to_array(point);
+    const ceres::Solver::Summary along = solve(tests, false, options, x);
+    const ceres::Solver::Summary predicted = solve(tests, true, options, x);
+    const bool usable = predicted.IsSolutionUsable() && std::isfinite(predicted.final_cost);
+    if (usable && (!found || predicted.final_cost < best.final_cost)) {
+      found = true;
+      best.parameters = from_array(x.data());
+      best.initial_cost = predicted.initial_cost;
+      best.final_cost = predicted.final_cost;
+      best.iterations = static_cast<int>(along.iterations.size() + predicted.iterations.size()) - 2;
+      best.converged = predicted.termination_type == ceres::CONVERGENCE;
+      best.start = k;
+      best.report = "along the DEM strain paths: " + along.BriefReport() +
+                    "\non the predicted paths: " + predicted.BriefReport();
+    }
+    best.start_costs.push_back(usable ? predicted.final_cost
+                                      : std::numeric_limits<double>::quiet_NaN());
+    ++k;
+  }
+  if (!found) throw std::runtime_error("contact-network fit: no start gave a usable solution");
+  return best;
+}
+
+}  // namespace calibration::network

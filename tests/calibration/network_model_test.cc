@@ -1,0 +1,294 @@
+// The contact-network model (calibration/network_model.h, docs/network-model.md): its stress
+// against sff/'s SFF equation, its laws against their closed forms, the critical state, frame
+// indifference, the drained driver, the fit's derivatives against centred differences and a fit
+// that recovers synthetic data.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "calibration/network_fit.h"
+#include "calibration/network_model.h"
+#include "sff/sff_equation.h"
+
+namespace calibration::network {
+namespace {
+
+Parameters<double> plausible() {
+  Parameters<double> p = default_start();
+  p.kappa = 80.0, p.c_v = 4.0, p.a_z = 0.9, p.k_a = 15.0, p.f_z = 2.0, p.t_z = 0.2;
+  p.d_z = 2.3, p.d_a = 0.5, p.n_r = 1.3, p.n_z = 4.0, p.k_z = 4.0;
+  return p;
+}
+
+Tensor<double> random_deviator(std::mt19937_64& random, double size) {
+  std::normal_distribution<double> normal(0.0, size);
+  Tensor<double> x;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) x(i, j) = x(j, i) = normal(random);
+  x -= x.trace() / 3.0 * Tensor<double>::Identity();
+  return x;
+}
+
+State<double> random_state(std::mt19937_64& random) {
+  return {0.65, 5.2, 1.2e-3, random_deviator(random, 0.4), random_deviator(random, 0.5),
+          random_deviator(random, 0.05)};
+}
+
+// The state at the critical state of triaxial compression: Z = Z_c(Lambda) and each anisotropy at
+// its critical norm along z.
+State<double> critical_state(const Parameters<double>& p, double lambda) {
+  return {0.7, critical_coordination(p, lambda), lambda, axisymmetric(p.a_cs),
+          axisymmetric(p.f_cs), axisymmetric(p.t_cs)};
+}
+
+Tensor<double> isochoric_compression(double size) {
+  Tensor<double> d = Tensor<double>::Zero();
+  d(0, 0) = d(1, 1) = -0.5 * size;
+  d(2, 2) = size;
+  return d;
+}
+
+double largest_change(const State<double>& r) {
+  return std::max({std::abs(r.void_ratio), std::abs(r.coordination), std::abs(r.lambda),
+                   r.fabric.cwiseAbs().maxCoeff(), r.normal.cwiseAbs().maxCoeff(),
+                   r.tangential.cwiseAbs().maxCoeff()});
+}
+
+TEST(NetworkModel, StressIsTheSffEquationOfTheSffModule) {
+  std::mt19937_64 random(7);
+  for (int trial = 0; trial < 5; ++trial) {
+    const State<double> s = random_state(random);  // non-coaxial A, F, F^t
+    sff::SffState reference;
+    reference.youngs_modulus = kDemYoungsModulus;
+    reference.coordination = s.coordination;
+    reference.void_ratio = s.void_ratio;
+    reference.lambda = s.lambda;
+    reference.fabric = s.fabric;
+    reference.normal = s.normal;
+    reference.tangential = s.tangential;
+    const Eigen::Matrix3d expected = sff::sff_stress(reference);
+    EXPECT_LT((stress(s, kDemYoungsModulus) - expected).norm(), 1e-12 * expected.norm());
+  }
+}
+
+TEST(NetworkModel, IsotropicCompressionFollowsItsClosedForm) {
+  // d = (v/3) I: no shear, so the anisotropies stay, ln Lambda rises by kappa v / 3 (N6), Z by
+  // c_v v (N5) and 1 + e falls by exp(-v) (N1).
+  const Parameters<double> p = plausible();
+  std::mt19937_64 random(3);
+  const State<double> s0 = random_state(random);
+  const double v = 0.004;
+  const Tensor<double> d = (v / 3.0) * Tensor<double>::Identity();
+  const State<double> s = integrate(p, s0, d, substeps_for(p, s0, d.norm()));
+  // Within RK4's error at the default substep (0.05^5 / 120 of the change per substep).
+  EXPECT_NEAR(s.lambda, s0.lambda * std::exp(p.kappa * v / 3.0), 1e-9 * s0.lambda);
+  EXPECT_NEAR(s.coordination, s0.coordination + p.c_v * v, 1e-12);
+  EXPECT_NEAR(s.void_ratio, (1.0 + s0.void_ratio) * std::exp(-v) - 1.0, 1e-12);
+  EXPECT_LT((s.fabric - s0.fabric).norm(), 1e-15);
+  EXPECT_LT((s.normal - s0.normal).norm(), 1e-15);
+  EXPECT_LT((s.tangential - s0.tangential).norm(), 1e-15);
+}
+
+TEST(NetworkModel, TheCriticalStateIsStationaryUnderIsochoricShear) {
+  const Parameters<double> p = plausible();
+  for (double lambda : {5e-4, 1e-3, 2.6e-3}) {
+    const State<double> s = critical_state(p, lambda);
+    const State<double> r = rate(p, s, isochoric_compression(1.0));
+    EXPECT_LT(largest_change(r), 1e-12) << "Lambda " << lambda;
+    // Its stress ratio is the concise SFF form of the critical anisotropies (sff-theory.md §4).
+    const Tensor<double> sigma = stress(s, kDemYoungsModulus);
+    EXPECT_NEAR(triaxial_part(sigma) / (sigma.trace() / 3.0),
+                sff::concise_eta(p.a_cs, p.f_cs, p.t_cs), 1e-12);
+  }
+  // Off the critical state the same shear changes it.
+  State<double> s = critical_state(p, 1e-3);
+  s.coordination += 0.3;
+  EXPECT_GT(largest_change(rate(p, s, isochoric_compression(1.0))), 1e-3);
+}
+
+TEST(NetworkModel, AnAnisotropyRelaxesExponentiallyInShearStrain) {
+  // At Z = Z_c with no dilatancy (d_z = d_a = 0) isochoric shear leaves Z and Lambda alone, and
+  // Eq. N2 integrates to a(eps_q) = a_cs + (a_0 - a_cs) exp(-k_a eps_q).
+  Parameters<double> p = plausible();
+  p.d_z = p.d_a = 0.0;
+  State<double> s = critical_state(p, 1e-3);
+  s.fabric = axisymmetric(-0.2);
+  s.normal = axisymmetric(0.3);
+  const double eps_q = 0.08;  // eps_q = eps_zz - eps_v / 3 on the isochoric path
+  const Tensor<double> d = isochoric_compression(eps_q);
+  const State<double> end = integrate(p, s, d, substeps_for(p, s, d.norm()));
+  EXPECT_NEAR(triaxial_part(end.fabric), p.a_cs + (-0.2 - p.a_cs) * std::exp(-p.k_a * eps_q),
+              1e-9);
+  EXPECT_NEAR(triaxial_part(end.normal), p.f_cs + (0.3 - p.f_cs) * std::exp(-p.k_f * eps_q),
+              1e-9);
+  EXPECT_NEAR(end.coordination, s.coordination, 1e-12);
+  EXPECT_NEAR(end.lambda, s.lambda, 1e-15);
+}
+
+TEST(NetworkModel, RatesAreFrameIndifferent) {
+  const Parameters<double> p = plausible();
+  std::mt19937_64 random(11);
+  const State<double> s = random_state(random);
+  const Tensor<double> d = random_deviator(random, 1.0) + 0.2 * Tensor<double>::Identity();
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+  auto rotate = [&](const Tensor<double>& x) -> Tensor<double> {
+    return rotation * x * rotation.transpose();
+  };
+  const State<double> turned{s.void_ratio,      s.coordination,   s.lambda,
+                             rotate(s.fabric), rotate(s.normal), rotate(s.tangential)};
+  const State<double> r = rate(p, s, d), rt = rate(p, turned, rotate(d));
+  EXPECT_NEAR(rt.lambda, r.lambda, 1e-15);
+  EXPECT_NEAR(rt.coordination, r.coordination, 1e-12);
+  EXPECT_NEAR(rt.void_ratio, r.void_ratio, 1e-12);
+  EXPECT_LT((rt.fabric - rotate(r.fabric)).norm(), 1e-12);
+  EXPECT_LT((rt.normal - rotate(r.normal)).norm(), 1e-12);
+  EXPECT_LT((rt.tangential - rotate(r.tangential)).norm(), 1e-12);
+  EXPECT_LT((stress(turned, kDemYoungsModulus) - rotate(stress(s, kDemYoungsModulus))).norm(),
+            1e-9);
+}
+
+// A synthetic test: the model's own prediction from an initial state, with the DEM's columns.
+TestData synthetic_test(const Parameters<double>& p, const std::string& name, double e0,
+                        double z0, double lambda0, bool drained, int rows, double end_strain) {
+  TestData t;
+  t.name = name;
+  t.source = "synthetic";
+  t.path = drained ? TestPath::kDrainedCompression : TestPath::kUndrainedCompression;
+  for (int k = 0; k < rows; ++k) {
+    t.axial_strain.push_back(end_strain * k / (rows - 1));
+    t.volumetric_strain.push_back(0.0);
+    t.eta.push_back(0.0);
+    t.void_ratio.push_back(e0);
+    t.p.push_back(1e5);
+  }
+  for (int k = 0; k < rows; k += 4) t.snapshot_axial_strain.push_back(t.axial_strain[k]);
+  const std::size_t m = t.snapshot_axial_strain.size();
+  t.a_c.assign(m, 0.0);
+  t.a_n.assign(m, 0.0);
+  t.mobilisation.assign(m, 0.0);
+  t.snapshot_eta.assign(m, 0.0);
+  t.coordination.assign(m, z0);
+  t.lambda.assign(m, lambda0);
+  t.a_t.assign(m, 0.0);
+  t.e0 = e0;
+  t.p0 = stress(initial_state(t), kDemYoungsModulus).trace() / 3.0;
+  const Curve c = predict(p, t);
+  EXPECT_TRUE(c.complete) << c.message;
+  for (std::size_t k = 0; k < c.axial_strain.size(); ++k) {
+    if (c.row[k] >= 0) {
+      t.eta[c.row[k]] = c.eta[k];
+      t.volumetric_strain[c.row[k]] = c.volumetric_strain[k];
+      t.void_ratio[c.row[k]] = c.void_ratio[k];
+      t.p[c.row[k]] = c.p[k];
+    }
+    if (c.snapshot[k] >= 0) {
+      t.coordination[c.snapshot[k]] = c.coordination[k];
+      t.lambda[c.snapshot[k]] = c.lambda[k];
+      t.a_c[c.snapshot[k]] = c.a_c[k];
+      t.a_n[c.snapshot[k]] = c.a_n[k];
+      t.a_t[c.snapshot[k]] = c.a_t[k];
+    }
+  }
+  validate_test_data(t);
+  return t;
+}
+
+TEST(NetworkModel, TheDrainedPredictionHoldsTheLateralStressAndDilatesWhenOverCoordinated) {
+  const Parameters<double> p = plausible();
+  const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 41, 0.2);
+  const Curve c = predict(p, dense);
+  ASSERT_TRUE(c.complete) << c.message;
+  for (double sigma : c.lateral_stress) EXPECT_NEAR(sigma / c.lateral_stress.front(), 1.0, 1e-10);
+  EXPECT_LT(c.volumetric_strain.back(), -0.02);  // Z > Z_c: it dilates
+  // The strain path of its own prediction gives the same curve (the two drivers agree).
+  const Curve along = follow_strain_path(p, dense);
+  for (std::size_t k = 0; k < c.eta.size(); ++k) EXPECT_NEAR(along.eta[k], c.eta[k], 1e-6);
+  const TestData loose = synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 41, 0.2);
+  EXPECT_GT(predict(p, loose).volumetric_strain.back(), 0.0);  // Z < Z_c: it contracts
+}
+
+TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
+  // Past the peak, on the predicted drained path the derivatives come through the implicit
+  // function theorem at each increment.
+  const Parameters<double> p = plausible();
+  const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 25, 0.12);
+  const TestData undrained = synthetic_test(p, "loose_undrained", 0.73, 4.4, 7e-4, false, 25, 0.08);
+  for (const TestData* t : {&dense, &undrained}) {
+    for (bool predicted : {false, true}) {
+      const ObjectiveValue value = evaluate_objective(*t, p, predicted);
+      ASSERT_TRUE(value.usable);
+      const auto x = to_array(p);
+      for (int i = 0; i < kNumParameters; ++i) {
+        const double h = 1e-6 * std::max(std::abs(x[i]), 1.0);
+        auto shifted = x;
+        shifted[i] = x[i] + h;
+        const Eigen::VectorXd up =
+            evaluate_objective(*t, from_array(shifted.data()), predicted).residuals;
+        shifted[i] = x[i] - h;
+        const Eigen::VectorXd down =
+            evaluate_objective(*t, from_array(shifted.data()), predicted).residuals;
+        const Eigen::VectorXd centred = (up - down) / (2.0 * h);
+        const double scale = std::max(centred.norm(), 1e-3);
+        EXPECT_LT((value.jacobian.col(i) - centred).norm(), 2e-5 * scale)
+            << t->name << (predicted ? " predicted" : " strain path") << ": "
+            << parameter_names()[i];
+      }
+    }
+  }
+}
+
+TEST(NetworkModel, TheFitRecoversSyntheticTests) {
+  const Parameters<double> truth = plausible();
+  const std::vector<TestData> tests = {
+      synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 31, 0.2),
+      synthetic_test(truth, "loose", 0.73, 4.3, 7e-4, true, 31, 0.2)};
+  auto start = to_array(truth);
+  const double factors[] = {1.2, 0.95, 1.2, 0.8, 1.1, 0.95, 1.2, 1.15, 1.05,
+                            0.9, 1.1,  1.05, 0.9, 1.2, 1.1, 1.2, 0.9, 1.1};
+  for (int i = 0; i < kNumParameters; ++i) start[i] *= factors[i];
+  FitOptions options;
+  options.max_iterations = 300;
+  double start_cost = 0.0;
+  for (const TestData& t : tests)
+    start_cost += 0.5 * evaluate_objective(t, from_array(start.data()), true).residuals.squaredNorm();
+  ASSERT_GT(start_cost, 100.0);
+  const FitResult result = fit(tests, from_array(start.data()), options);
+  EXPECT_LT(result.final_cost, 1e-8 * start_cost) << result.report;
+  for (const TestData& t : tests) {
+    const Errors e = compare(predict(result.parameters, t), t);
+    EXPECT_LT(e.eta, 1e-3) << t.name;
+    EXPECT_LT(e.volumetric, 1e-4) << t.name;
+    EXPECT_LT(e.coordination, 1e-3) << t.name;
+  }
+}
+
+TEST(NetworkModel, BadInputIsRefusedByName) {
+  Parameters<double> p = plausible();
+  p.k_a = -1.0;
+  try {
+    validate(p);
+    FAIL() << "a negative k_a was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("k_a"), std::string::npos) << e.what();
+  }
+  p = plausible();
+  p.zeta = std::nan("");
+  EXPECT_THROW(validate(p), std::invalid_argument);
+  TestData t = synthetic_test(plausible(), "dense", 0.58, 6.7, 4.5e-4, true, 9, 0.02);
+  t.lambda.clear();
+  try {
+    initial_state(t);
+    FAIL() << "a test without Lambda was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("lambda"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace calibration::network

@@ -1,0 +1,134 @@
+// The contact-network adapter (fe_model/network_material.h): its exact tangent against finite
+// differences of its own update, and a single-element drained triaxial test against the
+// material-point prediction of calibration/network_fit.h.
+#include "fe_model/network_material.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "calibration/network_fit.h"
+#include "fe_model/triaxial.h"
+
+namespace fe_model {
+namespace {
+
+namespace net = calibration::network;
+
+// Values of the order of the paper-size fit (docs/network-model.md).
+net::Parameters<double> parameters() {
+  net::Parameters<double> p = net::default_start();
+  p.kappa = 80.0, p.c_v = 4.0, p.a_z = 0.9, p.k_a = 15.0, p.f_z = 2.0, p.t_z = 0.2;
+  p.d_z = 2.3, p.d_a = 0.5, p.n_r = 1.3, p.n_z = 4.0, p.k_z = 4.0;
+  return p;
+}
+
+NetworkInitialState dense() {
+  NetworkInitialState s;
+  s.void_ratio = 0.58;
+  s.coordination = 6.7;
+  return s;
+}
+
+TEST(NetworkMaterial, PacksTheStateAndStartsAtTheInitialMeanStress) {
+  const NetworkMaterial material(parameters(), dense(), net::kDemYoungsModulus);
+  const PointState state = material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>());
+  ASSERT_EQ(state.internal_variables.size(), NetworkMaterial::kNumInternalVariables);
+  for (unsigned int i = 0; i < 3; ++i) EXPECT_NEAR(state.stress[i][i], -100e3, 1e-9);
+  const net::State<double> model = NetworkMaterial::to_model(state);
+  // Lambda = 3 p (1 + e) / (E Z) for an isotropic network (sff-theory.md §4).
+  EXPECT_NEAR(model.lambda, 3.0 * 100e3 * 1.58 / (150e6 * 6.7), 1e-18);
+  EXPECT_NEAR(*material.fabric_invariant(state), 0.0, 1e-15);
+}
+
+TEST(NetworkMaterial, TangentMatchesFiniteDifferencesOfTheUpdate) {
+  NetworkInitialState initial = dense();
+  initial.fabric = net::axisymmetric(0.6);
+  initial.normal = net::axisymmetric(1.2);
+  initial.tangential = net::axisymmetric(0.1);
+  initial.normal(0, 1) = initial.normal(1, 0) = 0.05;  // not coaxial
+  const NetworkMaterial material(parameters(), initial, net::kDemYoungsModulus);
+  const PointState start = material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>());
+  SymmetricTensor2 de;  // axial compression with some shear, tension positive
+  de[2][2] = -2e-3;
+  de[0][0] = de[1][1] = 0.6e-3;
+  de[0][2] = 0.3e-3;
+  PointState end;
+  const MaterialUpdate update = material.update(start, de, end);
+  ASSERT_EQ(update.status, MaterialStatus::kOk) << update.message;
+  const double h = 1e-7;
+  double max_error = 0.0, max_entry = 0.0;
+  for (unsigned int k = 0; k < 3; ++k)
+    for (unsigned int l = k; l < 3; ++l) {
+      SymmetricTensor2 dir;
+      dir[k][l] = 1.0;  // a symmetric tensor: moves eps_kl and eps_lk together
+      PointState plus, minus;
+      material.update(start, de + h * dir, plus);
+      material.update(start, de - h * dir, minus);
+      const SymmetricTensor2 fd = (plus.stress - minus.stress) / (2.0 * h);
+      const SymmetricTensor2 exact = update.tangent * dir;
+      max_error = std::max(max_error, (fd - exact).norm());
+      max_entry = std::max(max_entry, exact.norm());
+    }
+  std::cout << "contact-network tangent vs finite differences: " << max_error / max_entry << '\n';
+  EXPECT_LT(max_error / max_entry, 1e-6);
+}
+
+TEST(NetworkMaterial, OneElementDrainedTriaxialIsTheMaterialPointPrediction) {
+  const NetworkMaterial material(parameters(), dense(), net::kDemYoungsModulus);
+  TriaxialOptions options;
+  options.width = 0.5;
+  options.height = 1.0;
+  options.confining_pressure = 100e3;
+  options.axial_strain_end = 0.1;
+  options.n_steps = 50;
+  const TriaxialResult fe = run_triaxial(material, options);
+  ASSERT_TRUE(fe.completed) << fe.message;
+  // The same test at the material point: a drained test whose initial network is the element's.
+  calibration::TestData t;
+  t.name = "dense";
+  t.path = calibration::TestPath::kDrainedCompression;
+  for (const TriaxialStep& step : fe.steps) t.axial_strain.push_back(step.axial_strain);
+  const std::size_t n = t.axial_strain.size();
+  t.volumetric_strain.assign(n, 0.0);
+  t.eta.assign(n, 0.0);
+  t.void_ratio.assign(n, 0.58);
+  t.p.assign(n, 100e3);
+  t.e0 = 0.58;
+  t.p0 = 100e3;
+  const net::State<double> initial =
+      NetworkMaterial::to_model(material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>()));
+  t.snapshot_axial_strain = {0.0};
+  t.coordination = {initial.coordination};
+  t.lambda = {initial.lambda};
+  t.a_c = t.a_n = t.a_t = t.mobilisation = t.snapshot_eta = {0.0};
+  const net::Curve point = net::predict(parameters(), t);
+  ASSERT_TRUE(point.complete) << point.message;
+  ASSERT_EQ(point.eta.size(), n);
+  for (std::size_t k = 0; k < n; ++k) {
+    EXPECT_NEAR(fe.steps[k].q / fe.steps[k].p, point.eta[k], 1e-6) << "step " << k;
+    EXPECT_NEAR(fe.steps[k].volumetric_strain, point.volumetric_strain[k], 1e-7) << "step " << k;
+    EXPECT_NEAR(*fe.steps[k].fabric_invariant, point.a_c[k], 1e-6) << "step " << k;
+  }
+  std::cout << "contact-network single element at eps_a = " << fe.steps.back().axial_strain
+            << ": q/p = " << fe.steps.back().q / fe.steps.back().p
+            << ", eps_v = " << fe.steps.back().volumetric_strain << '\n';
+}
+
+TEST(NetworkMaterial, RefusesNonPhysicalInputByName) {
+  NetworkInitialState bad = dense();
+  bad.coordination = 0.0;
+  EXPECT_THROW(NetworkMaterial(parameters(), bad, net::kDemYoungsModulus), std::invalid_argument);
+  net::Parameters<double> p = parameters();
+  p.kappa = -1.0;
+  try {
+    NetworkMaterial material(p, dense(), net::kDemYoungsModulus);
+    FAIL() << "a negative kappa was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("kappa"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fe_model
