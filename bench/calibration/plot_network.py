@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""Plots the contact-network model's predictions (network_paper_fit --out DIR) against the DEM's
-committed reduced runs: q/p, volumetric strain, Z, Lambda, a_c, a_n, a_t against axial strain.
+"""Plots the contact-network model's predictions (network_fit --out DIR) against the DEM:
+q/p, volumetric strain, Z, Lambda, a_c, a_n, a_t against axial strain. A test is a committed
+paper-size CSV pair by name (bench/reference/NAME_series.csv, NAME_sff.csv) or a run file (.h5).
 
-usage: plot_network.py DIR NAME... -o OUT.png
+usage: plot_network.py DIR TEST... -o OUT.png
 """
 import argparse
 import csv
@@ -22,10 +23,21 @@ def read(path):
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
+def read_dem(test):
+    """The DEM's series and SFF table of a test, each as {column: values}."""
+    if test.endswith(".h5"):
+        import h5py
+        with h5py.File(test, "r") as f:
+            return {"series": {k: f["series"][k][()] for k in f["series"]},
+                    "sff": {k: f["analysis/sff"][k][()] for k in f["analysis/sff"]}}
+    return {"series": read(os.path.join(REFERENCE, test + "_series.csv")),
+            "sff": read(os.path.join(REFERENCE, test + "_sff.csv"))}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("folder")
-    ap.add_argument("names", nargs="+")
+    ap.add_argument("tests", nargs="+")
     ap.add_argument("-o", "--output", required=True)
     args = ap.parse_args()
     panels = [("eta", "q/p", "eta", "series"), ("volumetric_strain", "volumetric strain",
@@ -33,11 +45,11 @@ def main():
               ("lambda", "Lambda", "lambda", "sff"), ("a_c", "a_c", "a_c", "sff"),
               ("a_n", "a_n", "a_n", "sff"), ("a_t", "a_t", "a_t", "sff")]
     fig, axes = plt.subplots(2, 4, figsize=(16, 7.5))
-    for i, name in enumerate(args.names):
+    for i, test in enumerate(args.tests):
         colour = "C%d" % i
+        name = os.path.basename(test).split(".")[0]  # the run file's stem, as network_fit names it
         model = read(os.path.join(args.folder, name + "_network.csv"))
-        dem = {"series": read(os.path.join(REFERENCE, name + "_series.csv")),
-               "sff": read(os.path.join(REFERENCE, name + "_sff.csv"))}
+        dem = read_dem(test)
         for ax, (column, label, dem_column, table) in zip(axes.flat, panels):
             ax.plot(model["axial_strain"], model[column], "-", color=colour, label=name)
             d = dem[table]

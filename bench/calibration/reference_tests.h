@@ -1,5 +1,6 @@
-// The paper-size runs' committed reduced CSV pairs as calibration tests, for the bench fits:
-// bench/reference/<name>_series.csv and <name>_sff.csv, sheared with friction tan 30 degrees.
+// Calibration tests for the bench fits: a name is a paper-size run's committed reduced CSV pair,
+// bench/reference/<name>_series.csv and <name>_sff.csv (sheared with friction tan 30 degrees); a
+// path ending in .h5 is a run file (calibration::read_run_file).
 #pragma once
 
 #include <cmath>
@@ -16,9 +17,12 @@ inline std::vector<calibration::TestData> read_reference_tests(
   const std::string folder = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
   const double friction = std::tan(sffcal::kPi / 6.0);  // the runs' shearing friction
   std::vector<calibration::TestData> tests;
-  for (const std::string& n : names)
-    tests.push_back(calibration::read_csv_pair(folder + n + "_series.csv", folder + n + "_sff.csv",
-                                               n, friction));
+  for (const std::string& n : names) {
+    const bool run_file = n.size() > 3 && n.compare(n.size() - 3, 3, ".h5") == 0;
+    tests.push_back(run_file ? calibration::read_run_file(n)
+                             : calibration::read_csv_pair(folder + n + "_series.csv",
+                                                          folder + n + "_sff.csv", n, friction));
+  }
   return tests;
 }
 

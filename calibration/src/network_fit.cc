@@ -135,11 +135,24 @@ Parameters<Dual> lift_parameters(const Parameters<double>& par) {
   return from_array(y.data());
 }
 
+// The substeps of an increment, or 0 where it would need more than options.max_substeps: rates
+// that fast (a start far off in the fit, exp(n_r xi) large) make the path unusable, not slow.
+int checked_substeps(const Parameters<double>& par, const State<double>& start,
+                     double strain_norm, const FitOptions& options) {
+  const int n = substeps_for(par, start, strain_norm, options.substep_size);
+  return n > options.max_substeps ? 0 : n;
+}
+
 // Substeps of a drained increment, fixed for it (from the axial strain and a lateral one of half
-// its size), so that the Newton iterates on one smooth function.
+// its size), so that the Newton iterates on one smooth function; 0 as checked_substeps.
 int drained_substeps(const Parameters<double>& par, const State<double>& start, double da,
                      const FitOptions& options) {
-  return substeps_for(par, start, std::abs(da) * std::sqrt(1.5), options.substep_size);
+  return checked_substeps(par, start, std::abs(da) * std::sqrt(1.5), options);
+}
+
+std::string too_stiff_message(double axial, const FitOptions& options) {
+  return "the increment to axial strain " + std::to_string(axial) + " needs more than " +
+         std::to_string(options.max_substeps) + " RK4 substeps (rates too fast for the step)";
 }
 
 // Solves one drained increment: the lateral strain increment that brings sigma_xx to `target`,
@@ -151,6 +164,7 @@ bool drained_increment(const Parameters<double>& par, const State<double>& start
   const Parameters<Dual> par_dual = lift_parameters<Dual>(par);
   const State<Dual> s0 = cast<Dual>(start);
   const int substeps = drained_substeps(par, start, da, options);
+  if (substeps == 0) return false;
   for (int it = 0; it < 50; ++it) {
     const State<Dual> s = integrate(par_dual, s0,
                                     strain_increment(Dual(da), Dual(lateral, 0)), substeps);
@@ -253,9 +267,10 @@ struct PathObjective {
       } else {
         const double dv = predicted ? 0.0 : nodes[k].volumetric - nodes[k - 1].volumetric;
         const double dr = 0.5 * (dv - da);
-        s = integrate(par, s, strain_increment(T(da), T(dr)),
-                      substeps_for(par_values, state_values(s),
-                                   std::sqrt(da * da + 2.0 * dr * dr), options.substep_size));
+        const int substeps = checked_substeps(par_values, state_values(s),
+                                              std::sqrt(da * da + 2.0 * dr * dr), options);
+        if (substeps == 0) return false;
+        s = integrate(par, s, strain_increment(T(da), T(dr)), substeps);
       }
       if (!admissible(s)) return false;
       if (nodes[k].row >= 0) {
@@ -318,8 +333,13 @@ Curve follow_strain_path(const Parameters<double>& par, const TestData& t,
   for (std::size_t k = 1; k < nodes.size(); ++k) {
     const double da = nodes[k].axial - nodes[k - 1].axial;
     const double dr = 0.5 * ((nodes[k].volumetric - nodes[k - 1].volumetric) - da);
-    s = integrate(par, s, strain_increment(da, dr),
-                  substeps_for(par, s, std::sqrt(da * da + 2.0 * dr * dr), options.substep_size));
+    const int substeps = checked_substeps(par, s, std::sqrt(da * da + 2.0 * dr * dr), options);
+    if (substeps == 0) {
+      c.complete = false;
+      c.message = too_stiff_message(nodes[k].axial, options);
+      return c;
+    }
+    s = integrate(par, s, strain_increment(da, dr), substeps);
     if (!admissible(s)) {
       c.complete = false;
       c.message = "the state left its admissible range at axial strain " +
@@ -351,14 +371,21 @@ Curve predict(const Parameters<double>& par, const TestData& t, const FitOptions
       dr = lateral_ratio * da;
       if (!drained_increment(par, s, da, target, dr, end, options)) {
         c.complete = false;
-        c.message = "no lateral strain holds the lateral stress at axial strain " +
-                    std::to_string(nodes[k].axial);
+        c.message = drained_substeps(par, s, da, options) == 0
+                        ? too_stiff_message(nodes[k].axial, options)
+                        : "no lateral strain holds the lateral stress at axial strain " +
+                              std::to_string(nodes[k].axial);
         return c;
       }
       lateral_ratio = dr / da;
     } else {
-      end = integrate(par, s, strain_increment(da, dr),
-                      substeps_for(par, s, std::abs(da) * std::sqrt(1.5), options.substep_size));
+      const int substeps = checked_substeps(par, s, std::abs(da) * std::sqrt(1.5), options);
+      if (substeps == 0) {
+        c.complete = false;
+        c.message = too_stiff_message(nodes[k].axial, options);
+        return c;
+      }
+      end = integrate(par, s, strain_increment(da, dr), substeps);
     }
     if (!admissible(end)) {
       c.complete = false;

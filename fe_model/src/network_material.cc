@@ -19,6 +19,9 @@ using internal::to_deal;
 using internal::to_eigen;
 using internal::unpack;
 
+// An increment needing more substeps fails, so that the FE code cuts it.
+constexpr int kMaxSubsteps = 10000;
+
 // Voigt order of the independent strain components seeded in the tangent's dual numbers.
 constexpr int kI[6] = {0, 1, 2, 0, 1, 0};
 constexpr int kJ[6] = {0, 1, 2, 1, 2, 2};
@@ -105,8 +108,18 @@ MaterialUpdate NetworkMaterial::update(const PointState& start,
   const auto par = net::to_array(parameters_);
   std::array<Dual, net::kNumParameters> par_dual;
   for (int i = 0; i < net::kNumParameters; ++i) par_dual[i] = Dual(par[i]);
-  const net::State<Dual> s1 = net::integrate(net::from_array(par_dual.data()), s0_dual, d,
-                                             net::substeps_for(parameters_, s0, increment.norm()));
+  const int substeps = net::substeps_for(parameters_, s0, increment.norm());
+  if (substeps > kMaxSubsteps) {
+    MaterialUpdate failed;
+    failed.status = MaterialStatus::kFailed;
+    failed.message = "contact-network update: the strain increment of norm " +
+                     std::to_string(increment.norm()) + " needs " + std::to_string(substeps) +
+                     " RK4 substeps, more than " + std::to_string(kMaxSubsteps) + " (cut it)";
+    end = start;
+    return failed;
+  }
+  const net::State<Dual> s1 =
+      net::integrate(net::from_array(par_dual.data()), s0_dual, d, substeps);
   auto value = [](const Dual& x) { return x.a; };
   const net::State<double> model_end{s1.void_ratio.a,           s1.coordination.a,
                                      s1.lambda.a,               s1.fabric.unaryExpr(value),

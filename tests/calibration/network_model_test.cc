@@ -268,6 +268,20 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
   }
 }
 
+TEST(NetworkModel, RatesTooFastForTheStepStopThePathWithAMessage) {
+  // A network far above its critical coordination with the largest rate exponent: exp(10 xi) of
+  // order 1e3 on k_f = 3000 would need about 1e5 RK4 substeps per 1 % of strain.
+  const TestData dense = synthetic_test(plausible(), "dense", 0.58, 6.7, 4.5e-4, true, 9, 0.08);
+  Parameters<double> p = plausible();
+  p.n_r = 10.0;
+  p.k_f = 3000.0;
+  const Curve c = predict(p, dense);
+  EXPECT_FALSE(c.complete);
+  EXPECT_NE(c.message.find("substeps"), std::string::npos) << c.message;
+  EXPECT_FALSE(follow_strain_path(p, dense).complete);
+  EXPECT_FALSE(evaluate_objective(dense, p, true).usable);
+}
+
 TEST(NetworkModel, BadInputIsRefusedByName) {
   Parameters<double> p = plausible();
   p.k_a = -1.0;

@@ -128,6 +128,11 @@ TEST(RunFileContract, CommittedSchemaOneFilesStillRead) {
     ASSERT_TRUE(test.analysed);
     EXPECT_GE(test.sff.a_c.size(), 2u);
     EXPECT_EQ(test.sff.m.size(), test.sff.axial_strain.size());
+    // The contact-network model's state columns (optional in the reader, present here).
+    EXPECT_EQ(test.sff.coordination.size(), test.sff.axial_strain.size());
+    EXPECT_EQ(test.sff.lambda.size(), test.sff.axial_strain.size());
+    EXPECT_EQ(test.sff.a_t.size(), test.sff.axial_strain.size());
+    EXPECT_GT(test.sff.lambda.front(), 0.0);
     const RunFile file = RunFile::open(path);
     EXPECT_FALSE(file.has_summary());  // schema 1 kept it as a note
     EXPECT_FALSE(file.read_note("summary").empty());
@@ -158,6 +163,17 @@ TEST(RunFileContract, ADemTestNamesWhatIsMissing) {
     file.write_table("sff", {"axial_strain", "a_c"}, {{0.0, 0.1}, {0.02, 0.2}});
   }
   expect_error([&] { read_dem_test(path); }, {path, "/analysis/sff", "'p'"});
+  {  // the required columns without the optional coordination, lambda and a_t: read, left empty
+    RunFile file = RunFile::open(path, true);
+    file.write_table("sff", {"axial_strain", "p", "q", "eta", "void_ratio", "a_c", "a_n", "m",
+                             "lambda"},
+                     {{0.0, 1e5, 0.0, 0.0, 0.7, 0.0, 0.0, 0.0, 1e-3}});
+  }
+  test = read_dem_test(path);
+  EXPECT_TRUE(test.analysed);
+  EXPECT_EQ(test.sff.a_c.size(), 1u);
+  EXPECT_TRUE(test.sff.lambda.empty());  // all three or none
+  EXPECT_TRUE(test.sff.coordination.empty());
   std::remove(path.c_str());
 }
 

@@ -51,6 +51,9 @@ struct Curve {
 
 struct FitOptions {
   double substep_size = 0.05;  ///< rate constant times substep strain (substeps_for)
+  /// An increment that needs more RK4 substeps fails (the fit's step is refused, a path stops):
+  /// about 100 times what the paper-size runs' fitted rates need per row.
+  int max_substeps = 2000;
   /// Residual scales: (model - DEM) / scale.
   double eta_scale = 0.05;
   double stress_scale = 0.02;       ///< relative lateral stress (drained) or p/p0 (undrained)

@@ -1,9 +1,10 @@
-// The contact-network model (docs/network-model.md) fitted to the paper-size runs' micro
-// histories from their committed reduced CSV pairs (bench/reference/<name>_series.csv and
-// <name>_sff.csv), then each test predicted on its own loading path (issue 19, point 2).
+// The contact-network model (docs/network-model.md) fitted to DEM tests' micro histories, then
+// each test predicted on its own loading path (issue 19, point 2). A test is a paper-size run's
+// committed reduced CSV pair by name (bench/reference/<name>_series.csv and <name>_sff.csv) or a
+// run file (.h5) analysed by `sffcal sff`.
 //
-// usage: network_paper_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] [--out DIR]
-//   e.g. build/bench/network_paper_fit dense_100kPa loose_200kPa --hold-out dense_300kPa
+// usage: network_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] [--out DIR]
+//   e.g. build/bench/network_fit dense_100kPa loose_200kPa --hold-out dense_300kPa
 // Prints the fitted parameters and, per test, the RMS errors along the DEM's strain path (the
 // fit's objective) and of the prediction; --out writes <DIR>/<name>_network.csv per test (the
 // prediction at the DEM's rows and snapshots) for plotting. DIR must not exist yet.
@@ -60,7 +61,7 @@ int main(int argc, char** argv) {
       }
     }
     if (fitted.empty()) {
-      std::fprintf(stderr, "usage: network_paper_fit FITTED... [--hold-out HELD...] "
+      std::fprintf(stderr, "usage: network_fit FITTED... [--hold-out HELD...] "
                            "[--threads N] [--starts N] [--out DIR]\n");
       return 2;
     }
@@ -82,8 +83,8 @@ int main(int argc, char** argv) {
     for (int i = 0; i < net::kNumParameters; ++i)
       std::printf("| %s | %.6g |\n", net::parameter_names()[i], x[i]);
     std::printf("\n| test | role | path: RMS q/p | Z | Lambda (rel.) | a_c | a_n | a_t | "
-                "predicted: RMS q/p | RMS eps_v | Z | Lambda (rel.) | a_c | a_n | a_t |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "predicted: RMS q/p | RMS eps_v | RMS p/p0 | Z | Lambda (rel.) | a_c | a_n | a_t |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     auto row = [&](const calibration::TestData& t, const char* role) {
       const net::Curve along = net::follow_strain_path(result.parameters, t, options);
       const net::Curve predicted = net::predict(result.parameters, t, options);
@@ -91,11 +92,11 @@ int main(int argc, char** argv) {
       std::printf("| %s | %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.4f |", t.name.c_str(), role,
                   a.eta, a.coordination, a.lambda, a.a_c, a.a_n, a.a_t);
       if (predicted.axial_strain.size() < 2)
-        std::printf(" stopped: %s | | | | | | |\n", predicted.message.c_str());
+        std::printf(" stopped: %s | | | | | | | |\n", predicted.message.c_str());
       else
-        std::printf(" %.3f%s | %.4f | %.3f | %.3f | %.3f | %.3f | %.4f |\n", b.eta,
-                    predicted.complete ? "" : " (to the stop)", b.volumetric, b.coordination,
-                    b.lambda, b.a_c, b.a_n, b.a_t);
+        std::printf(" %.3f%s | %.4f | %.3f | %.3f | %.3f | %.3f | %.3f | %.4f |\n", b.eta,
+                    predicted.complete ? "" : " (to the stop)", b.volumetric, b.p_ratio,
+                    b.coordination, b.lambda, b.a_c, b.a_n, b.a_t);
       if (!predicted.complete && predicted.axial_strain.size() >= 2)
         std::printf("(%s: %s)\n", t.name.c_str(), predicted.message.c_str());
       if (!out_dir.empty()) write_curve(out_dir + "/" + t.name + "_network.csv", predicted);
@@ -104,7 +105,7 @@ int main(int argc, char** argv) {
     for (const auto& t : held_tests) row(t, "held back");
     return 0;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "network_paper_fit: %s\n", e.what());
+    std::fprintf(stderr, "network_fit: %s\n", e.what());
     return 1;
   }
 }
