@@ -462,6 +462,14 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
   solver.num_threads = options.threads;
   solver.function_tolerance = 1e-8;
   ceres::Solver::Summary summary;
+  // A start whose paths leave the admissible states is dropped here, quietly: Ceres would log
+  // an error for it.
+  double cost = 0.0;
+  if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr)) {
+    summary.termination_type = ceres::FAILURE;
+    summary.message = "the starting point's paths leave the admissible states";
+    return summary;
+  }
   ceres::Solve(solver, &problem, &summary);
   return summary;
 }
@@ -516,6 +524,11 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
   for (const Parameters<double>& point : starting_points(start, options.starts, options.seed)) {
     std::array<double, kNumParameters> x = to_array(point);
     const ceres::Solver::Summary along = solve(tests, false, options, x);
+    if (along.termination_type == ceres::FAILURE) {
+      best.start_costs.push_back(std::numeric_limits<double>::quiet_NaN());
+      ++k;
+      continue;
+    }
     const ceres::Solver::Summary predicted = solve(tests, true, options, x);
     const bool usable = predicted.IsSolutionUsable() && std::isfinite(predicted.final_cost);
     if (usable && (!found || predicted.final_cost < best.final_cost)) {
