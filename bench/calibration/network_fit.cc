@@ -6,7 +6,8 @@
 // usage: network_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] [--out DIR]
 //   e.g. build/bench/network_fit dense_100kPa loose_200kPa --hold-out dense_300kPa
 // Prints the fitted parameters and, per test, the RMS errors along the DEM's strain path (the
-// fit's objective) and of the prediction; --out writes <DIR>/<name>_network.csv per test (the
+// fit's objective) and of the prediction; --out writes <DIR>/parameters.json (the parameter file
+// of docs/network-model.md, with the fit's record) and <DIR>/<name>_network.csv per test (the
 // prediction at the DEM's rows and snapshots) for plotting. DIR must not exist yet.
 #include <cstdio>
 #include <cstdlib>
@@ -103,6 +104,28 @@ int main(int argc, char** argv) {
     };
     for (const auto& t : fit_tests) row(t, "fitted");
     for (const auto& t : held_tests) row(t, "held back");
+    if (!out_dir.empty()) {
+      // The tests as given on the command line, as JSON strings.
+      auto list = [](const std::vector<std::string>& names) {
+        std::string out;
+        for (const std::string& n : names) {
+          out += out.empty() ? "\"" : ", \"";
+          for (char ch : n) {
+            if (ch == '"' || ch == '\\') out += '\\';
+            out += ch;
+          }
+          out += '"';
+        }
+        return out;
+      };
+      std::string record = "{\"fit\": {\"tests\": [" + list(fitted) + "], \"held_back\": [" +
+                           list(held);
+      record += "], \"final_cost\": " + std::to_string(result.final_cost) +
+                ", \"starts\": " + std::to_string(options.starts) +
+                ", \"seed\": " + std::to_string(options.seed) + "}}";
+      net::write_parameters_json(result.parameters, net::kDemYoungsModulus,
+                                 out_dir + "/parameters.json", record);
+    }
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "network_fit: %s\n", e.what());

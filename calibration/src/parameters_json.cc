@@ -1,6 +1,8 @@
-// The parameter file of the calibration (docs/model.md, "Parameter file"):
+// The parameter files of the two materials: the ACST model's (docs/model.md, "Parameter file"):
 //   {"model": "acst", "reference_pressure": {"value": 101325, "unit": "Pa"},
 //    "parameters": {"G0": {"value": 125, "unit": "1"}, ...}}
+// and the contact-network model's (namespace network below).
+#include <array>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -8,6 +10,7 @@
 #include <utility>
 
 #include "calibration/acst_model.h"
+#include "calibration/network_model.h"
 
 namespace calibration {
 
@@ -21,9 +24,8 @@ constexpr const auto& kFields = kParameterFields<double>;
   throw std::runtime_error("parameter file '" + path + "': " + what);
 }
 
-}  // namespace
-
-Parameters<double> read_parameters_json(const std::string& path) {
+// The file's top-level object.
+Json read_json(const std::string& path) {
   std::ifstream in(path);
   if (!in) fail(path, "cannot be opened");
   Json root;
@@ -33,6 +35,29 @@ Parameters<double> read_parameters_json(const std::string& path) {
     fail(path, std::string("is not valid JSON: ") + e.what());
   }
   if (!root.is_object()) fail(path, "the top level must be an object");
+  return root;
+}
+
+// Adds the members of extra_json_object (a JSON object text; "" adds nothing) at the top level.
+void merge_extra(Json& root, const std::string& extra_json_object, const std::string& path) {
+  if (extra_json_object.empty()) return;
+  Json extra;
+  try {
+    extra = Json::parse(extra_json_object);
+  } catch (const Json::parse_error& e) {
+    fail(path, std::string("extra content is not valid JSON: ") + e.what());
+  }
+  if (!extra.is_object()) fail(path, "extra content must be a JSON object");
+  for (auto it = extra.begin(); it != extra.end(); ++it) {
+    if (root.contains(it.key())) fail(path, "extra key '" + it.key() + "' is reserved");
+    root[it.key()] = it.value();
+  }
+}
+
+}  // namespace
+
+Parameters<double> read_parameters_json(const std::string& path) {
+  const Json root = read_json(path);
   if (root.contains("model") && root["model"] != "acst")
     fail(path, "key 'model' must be \"acst\"");
   if (root.contains("reference_pressure")) {
@@ -112,20 +137,61 @@ void write_parameters_json(const Parameters<double>& par, const std::string& pat
     entry["at_bound"] = a.at_bound;
     entry["stage"] = a.stage;
   }
-  if (!extra_json_object.empty()) {
-    Json extra;
-    try {
-      extra = Json::parse(extra_json_object);
-    } catch (const Json::parse_error& e) {
-      fail(path, std::string("extra content is not valid JSON: ") + e.what());
-    }
-    if (!extra.is_object()) fail(path, "extra content must be a JSON object");
-    for (auto it = extra.begin(); it != extra.end(); ++it) {
-      if (root.contains(it.key())) fail(path, "extra key '" + it.key() + "' is reserved");
-      root[it.key()] = it.value();
-    }
-  }
+  merge_extra(root, extra_json_object, path);
   write_json(root, path);
 }
+
+namespace network {
+
+// The contact-network model's file (docs/network-model.md, "Parameter file"):
+//   {"model": "contact_network", "youngs_modulus": {"value": 1.5e8, "unit": "Pa"},
+//    "parameters": {"kappa": {"value": 133.5, "unit": "1"}, ...}, ...}
+Parameters<double> read_parameters_json(const std::string& path, double* youngs_modulus) {
+  const Json root = read_json(path);
+  if (!root.contains("model") || root["model"] != "contact_network")
+    fail(path, "key 'model' must be \"contact_network\"");
+  if (!root.contains("youngs_modulus") || !root["youngs_modulus"].is_object() ||
+      !root["youngs_modulus"].contains("value") || !root["youngs_modulus"]["value"].is_number() ||
+      root["youngs_modulus"].value("unit", "") != "Pa" ||
+      !(root["youngs_modulus"]["value"].get<double>() > 0.0))
+    fail(path, "key 'youngs_modulus' must be {\"value\": E > 0, \"unit\": \"Pa\"}");
+  if (youngs_modulus) *youngs_modulus = root["youngs_modulus"]["value"].get<double>();
+  if (!root.contains("parameters") || !root["parameters"].is_object())
+    fail(path, "missing key 'parameters' (an object)");
+  const Json& params = root["parameters"];
+  std::array<double, kNumParameters> x;
+  for (int i = 0; i < kNumParameters; ++i) {
+    const std::string name = parameter_names()[i], key = "parameters." + name;
+    if (!params.contains(name) || !params[name].is_object() || !params[name].contains("value"))
+      fail(path, "missing key '" + key + ".value'");
+    if (!params[name]["value"].is_number()) fail(path, "key '" + key + ".value' must be a number");
+    if (params[name].value("unit", "") != "1") fail(path, "key '" + key + ".unit' must be \"1\"");
+    x[i] = params[name]["value"].get<double>();
+  }
+  const Parameters<double> par = from_array(x.data());
+  try {
+    validate(par);
+  } catch (const std::invalid_argument& e) {
+    fail(path, e.what());
+  }
+  return par;
+}
+
+void write_parameters_json(const Parameters<double>& par, double youngs_modulus,
+                           const std::string& path, const std::string& extra_json_object) {
+  validate(par);
+  Json root;
+  root["model"] = "contact_network";
+  root["youngs_modulus"] = {{"value", youngs_modulus}, {"unit", "Pa"}};
+  Json params = Json::object();
+  const auto x = to_array(par);
+  for (int i = 0; i < kNumParameters; ++i)
+    params[parameter_names()[i]] = {{"value", x[i]}, {"unit", "1"}};
+  root["parameters"] = params;
+  merge_extra(root, extra_json_object, path);
+  write_json(root, path);
+}
+
+}  // namespace network
 
 }  // namespace calibration

@@ -7,6 +7,8 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -280,6 +282,41 @@ TEST(NetworkModel, RatesTooFastForTheStepStopThePathWithAMessage) {
   EXPECT_NE(c.message.find("substeps"), std::string::npos) << c.message;
   EXPECT_FALSE(follow_strain_path(p, dense).complete);
   EXPECT_FALSE(evaluate_objective(dense, p, true).usable);
+}
+
+TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
+  const std::string path = ::testing::TempDir() + "network_parameters.json";
+  const Parameters<double> p = plausible();
+  write_parameters_json(p, 150e6, path, R"({"fit": {"final_cost": 1.5}})");
+  double modulus = 0.0;
+  const Parameters<double> back = read_parameters_json(path, &modulus);
+  EXPECT_EQ(modulus, 150e6);
+  EXPECT_EQ(to_array(back), to_array(p));  // bit for bit: JSON keeps 17 significant digits
+  auto expect_error = [&](const std::string& text, const std::string& part) {
+    {
+      std::ofstream out(path);
+      out << text;
+    }
+    try {
+      read_parameters_json(path);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  };
+  expect_error(R"({"model": "acst"})", "'model'");
+  expect_error(R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8, "unit": "Pa"},
+                  "parameters": {}})", "parameters.kappa.value");
+  std::string text = R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8,
+                         "unit": "Pa"}, "parameters": {)";
+  const auto x = to_array(p);
+  for (int i = 0; i < kNumParameters; ++i)
+    text += std::string(i ? ", " : "") + "\"" + parameter_names()[i] + "\": {\"value\": " +
+            (i == 7 ? std::string("-1") : std::to_string(x[i])) + ", \"unit\": \"1\"}";
+  expect_error(text + "}}", "k_a");  // out of range
+  expect_error("{\"model\": ", "not valid JSON");
+  std::remove(path.c_str());
 }
 
 TEST(NetworkModel, BadInputIsRefusedByName) {

@@ -111,6 +111,18 @@ inline void validate(const Parameters<double>& par) {
                                   std::to_string(hi[i]) + "]");
 }
 
+/// The parameter file (docs/network-model.md, "Parameter file"): {"model": "contact_network",
+/// "youngs_modulus": {"value": E, "unit": "Pa"}, "parameters": {name: {"value": x, "unit": "1"}}},
+/// other top-level keys (the fit's record) ignored. Throws std::runtime_error naming the file and
+/// the key, or the parameter out of range; E [Pa] is returned through youngs_modulus if given.
+Parameters<double> read_parameters_json(const std::string& path,
+                                        double* youngs_modulus = nullptr);
+/// Writes that layout, with the members of extra_json_object (a JSON object text) added at the
+/// top level. Throws std::invalid_argument for parameters out of range, std::runtime_error if the
+/// file cannot be written or the extra text is not a JSON object.
+void write_parameters_json(const Parameters<double>& par, double youngs_modulus,
+                           const std::string& path, const std::string& extra_json_object = "");
+
 /// The SFF equation (sff-theory.md §4, He & Cai 2019 eq. C0) for the model's state; the grain
 /// modulus E [Pa] is the DEM's (the normalisation of Lambda).
 template <typename T>
