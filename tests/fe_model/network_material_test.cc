@@ -152,6 +152,30 @@ TEST(NetworkMaterial, ARoughPlatenMeshConvergesQuadratically) {
   }
 }
 
+// Stress test: 40 % of extension in one load step. Whatever the outcome (cut until it goes, or a
+// clean stop), nothing is NaN and a stop names its reason.
+TEST(NetworkMaterial, AHugeExtensionStepEndsCleanly) {
+  const NetworkMaterial material(parameters(), dense(), net::kDemYoungsModulus);
+  TriaxialOptions options;
+  options.width = 0.5;
+  options.height = 1.0;
+  options.confining_pressure = 100e3;
+  options.axial_strain_end = -0.4;
+  options.n_steps = 1;
+  options.solver.max_cuts = 6;
+  const TriaxialResult result = run_triaxial(material, options);
+  std::cout << (result.completed ? "completed" : "stopped: " + result.message) << '\n';
+  if (!result.completed) {
+    EXPECT_FALSE(result.message.empty());
+  }
+  ASSERT_FALSE(result.steps.empty());
+  for (const TriaxialStep& step : result.steps) {
+    EXPECT_TRUE(std::isfinite(step.p) && std::isfinite(step.q) &&
+                std::isfinite(step.volumetric_strain));
+    EXPECT_GT(step.p, 0.0);
+  }
+}
+
 TEST(NetworkMaterial, RefusesNonPhysicalInputByName) {
   NetworkInitialState bad = dense();
   bad.coordination = 0.0;
