@@ -72,11 +72,12 @@ int main(int argc, char** argv) {
 #ifdef SFFCAL_HAVE_FE_CHECK
   sffcal::FeCheckOptions fe_check_options;
   CLI::App* fe_check = app.add_subcommand(
-      "fe-check", "Element-level drained triaxial checks of the ACST model: material-point "
-                  "driver, one Q1 hexahedron and a 2x2x4 mesh, against each other and against DEM "
-                  "runs (docs/fe.md; plot with scripts/plot_fe_check.py)");
+      "fe-check", "Element-level drained triaxial checks of the ACST or contact-network model: "
+                  "material-point driver, one Q1 hexahedron and a 2x2x4 mesh, against each other "
+                  "and against DEM runs (docs/fe.md; plot with scripts/plot_fe_check.py)");
   fe_check->add_option("--parameters", fe_check_options.parameters_path,
-                       "ACST parameter file (calibration JSON)")
+                       "parameter file (calibration JSON: ACST, or the contact-network model, whose "
+                       "cases are the --dem runs' networks)")
       ->required()
       ->check(CLI::ExistingFile);
   fe_check->add_option("--dem", fe_check_options.dem_runs,

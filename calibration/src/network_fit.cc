@@ -351,11 +351,12 @@ Curve follow_strain_path(const Parameters<double>& par, const TestData& t,
   return c;
 }
 
-Curve predict(const Parameters<double>& par, const TestData& t, const FitOptions& options) {
+Curve predict(const Parameters<double>& par, const TestData& t, const FitOptions& options,
+              std::optional<double> lateral_stress) {
   validate(par);
   const std::vector<Node> nodes = path_nodes(t);
   State<double> s = initial_state(t);
-  const double target = stress(s, kDemYoungsModulus)(0, 0);
+  const double target = lateral_stress.value_or(stress(s, kDemYoungsModulus)(0, 0));
   const bool drained = holds_lateral_stress(t.path);
   if (!drained && !is_undrained(t.path))
     throw std::runtime_error("test '" + t.name + "': the contact-network model predicts drained "

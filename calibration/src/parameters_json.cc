@@ -56,6 +56,13 @@ void merge_extra(Json& root, const std::string& extra_json_object, const std::st
 
 }  // namespace
 
+std::string parameter_file_model(const std::string& path) {
+  const Json root = read_json(path);
+  if (!root.contains("model")) return "acst";
+  if (!root["model"].is_string()) fail(path, "key 'model' must be a string");
+  return root["model"].get<std::string>();
+}
+
 Parameters<double> read_parameters_json(const std::string& path) {
   const Json root = read_json(path);
   if (root.contains("model") && root["model"] != "acst")

@@ -143,7 +143,6 @@ Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters
 Curve run_acst_fe_triaxial(const calibration::Parameters<double>& parameters,
                            const AcstSpecimen& specimen, const AcstLoading& loading,
                            const AcstMeshOptions& mesh) {
-  const auto t0 = std::chrono::steady_clock::now();
   const std::string refused = refused_confinement(specimen, loading);
   if (!refused.empty()) {
     Curve curve;
@@ -155,14 +154,19 @@ Curve run_acst_fe_triaxial(const calibration::Parameters<double>& parameters,
   initial.void_ratio = specimen.void_ratio;
   initial.fabric = specimen.fabric;
   const AcstMaterial material(parameters, initial, loading.integration);
+  return run_fe_triaxial(material, specimen.confining_pressure, loading, mesh);
+}
 
+Curve run_fe_triaxial(const Material& material, double confining_pressure,
+                      const AcstLoading& loading, const AcstMeshOptions& mesh) {
+  const auto t0 = std::chrono::steady_clock::now();
   TriaxialOptions options;
   options.width = mesh.width;
   options.height = mesh.height;
   options.cells_x = mesh.cells_x;
   options.cells_y = mesh.cells_y;
   options.cells_z = mesh.cells_z;
-  options.confining_pressure = specimen.confining_pressure;
+  options.confining_pressure = confining_pressure;
   options.axial_strain_end = loading.axial_strain_end;
   options.n_steps = loading.n_steps;
   options.solver.residual_rtol = mesh.residual_rtol;
@@ -183,7 +187,8 @@ Curve run_acst_fe_triaxial(const calibration::Parameters<double>& parameters,
     point.volumetric_strain = step.volumetric_strain;
     point.p = step.p;
     point.q = step.q;
-    // Internal variable 0 of the ACST adapter is the void ratio (acst_material.h).
+    // Internal variable 0 of both adapters is the void ratio (acst_material.h,
+    // network_material.h).
     point.void_ratio = step.internal_variables.empty()
                            ? std::numeric_limits<double>::quiet_NaN()
                            : step.internal_variables[0];

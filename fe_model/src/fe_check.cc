@@ -1,5 +1,6 @@
 #include "fe_model/fe_check.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -15,6 +16,11 @@
 #include "calibration/acst_model.h"
 #include "fe_model/acst_check.h"
 #include "runfile/dem_test.h"
+
+#ifdef SFFCAL_FE_CHECK_NETWORK
+#include "calibration/network_fit.h"
+#include "fe_model/network_material.h"
+#endif
 
 namespace fe_model {
 namespace {
@@ -112,8 +118,8 @@ std::string run_line(const Curve& curve, unsigned int steps) {
 }
 
 void add_path_checks(std::vector<FeCheckRow>& rows, const std::string& case_name,
-                     const std::string& check, const Curve& curve,
-                     const Curve& reference) {
+                     const std::string& check, const Curve& curve, const Curve& reference,
+                     double tolerance = kVerificationTolerance) {
   const PathError error = compare_paths(curve, reference);
   const bool complete = curve.completed && reference.completed;
   const bool aligned = error.axial_strain_mismatch <= 1e-12;
@@ -127,7 +133,7 @@ void add_path_checks(std::vector<FeCheckRow>& rows, const std::string& case_name
     row.check = check;
     row.quantity = k == 0 ? "q (max rel.)" : "eps_v (max rel.)";
     row.value = k == 0 ? error.q : error.volumetric_strain;
-    row.tolerance = kVerificationTolerance;
+    row.tolerance = tolerance;
     row.pass = complete && aligned && std::isfinite(row.value) && row.value <= row.tolerance;
     row.note = note;
     rows.push_back(row);
@@ -139,6 +145,155 @@ std::string format_value(double v) {
   std::snprintf(buffer, sizeof buffer, "%.3g", v);
   return buffer;
 }
+
+// The 2x2x4 mesh of every case, its VTU files in <folder>/vtu/.
+AcstMeshOptions check_mesh_options(const fs::path& folder, bool verbose) {
+  AcstMeshOptions mesh;
+  mesh.cells_x = mesh.cells_y = 2;
+  mesh.cells_z = 4;
+  mesh.verbose = verbose;
+  fs::create_directories(folder / "vtu");
+  mesh.vtu_prefix = (folder / "vtu" / "mesh").string();
+  return mesh;
+}
+
+// The DEM run's curves beside the case's, and the FE-vs-DEM rows (calibration quality).
+void add_dem_checks(std::vector<FeCheckRow>& checks, const std::string& case_name,
+                    const fs::path& folder, const Curve& element, const DemRun& dem,
+                    const FeCheckOptions& options) {
+  write_curve_csv((folder / "dem.csv").string(), dem.curve);
+  if (!dem.fabric.points.empty()) write_curve_csv((folder / "dem_fabric.csv").string(), dem.fabric);
+  const DemError error = compare_with_dem(element, dem.curve);
+  const std::string note =
+      std::to_string(error.points) + " DEM points to eps_a = " +
+      format_value(element.points.empty() ? 0.0 : element.points.back().axial_strain);
+  FeCheckRow eta{case_name, "FE vs DEM", "q/p (RMS)", error.eta_rms, options.dem_eta_tolerance,
+                 error.points > 0 && error.eta_rms <= options.dem_eta_tolerance, false, note};
+  FeCheckRow ev{case_name,
+                "FE vs DEM",
+                "eps_v (RMS)",
+                error.volumetric_strain_rms,
+                options.dem_volumetric_tolerance,
+                error.points > 0 && error.volumetric_strain_rms <= options.dem_volumetric_tolerance,
+                false,
+                note};
+  checks.push_back(eta);
+  checks.push_back(ev);
+}
+
+void write_summary(const fs::path& out_folder, const std::vector<FeCheckRow>& checks) {
+  std::ofstream summary(out_folder / "summary.csv");
+  summary << "case,check,quantity,value,tolerance,result,note\n" << std::setprecision(6);
+  for (const FeCheckRow& row : checks)
+    summary << row.case_name << ',' << row.check << ',' << row.quantity << ',' << row.value << ','
+            << row.tolerance << ',' << (row.pass ? "pass" : "fail") << ",\"" << row.note << "\"\n";
+  if (!summary) throw std::runtime_error("cannot write " + (out_folder / "summary.csv").string());
+}
+
+#ifdef SFFCAL_FE_CHECK_NETWORK
+// The contact-network model (docs/network-model.md) on the DEM runs' cases: its network starts
+// from each run's first snapshot, so there are no plain pressure cases. The driver holds the
+// lateral stress at sigma_3, as the element's confining traction does (the initial SFF stress
+// differs from it by the initial anisotropies). Element and driver solve the same increments with
+// RK4 substeps chosen from different strain norms (the FE update's whole increment, the driver's
+// axial one), so they agree to the integration error, not to round-off: kNetworkDriverTolerance.
+constexpr double kNetworkDriverTolerance = 1e-6;
+
+FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckLog& log) {
+  namespace net = calibration::network;
+  if (options.dem_runs.empty())
+    throw std::invalid_argument("the contact-network model starts from a DEM run's network (Z, "
+                                "Lambda, anisotropies): give it with --dem RUN.h5");
+  double youngs_modulus = 0.0;
+  const net::Parameters<double> parameters =
+      net::read_parameters_json(options.parameters_path, &youngs_modulus);
+  const fs::path out_folder(options.output_folder);
+  fs::create_directories(out_folder);
+  AcstLoading loading;
+  loading.axial_strain_end = options.max_strain;
+  loading.n_steps = options.steps;
+  log(format("sffcal fe-check: contact-network parameters %s, E = %.4g Pa",
+             options.parameters_path.c_str(), youngs_modulus));
+  log(format("drained triaxial compression to axial strain %.3g in %u steps; output in %s/ "
+             "(the plain pressure cases need an initial network: not run)",
+             options.max_strain, options.steps, out_folder.string().c_str()));
+  FeCheckResult result;
+  for (const std::string& path : options.dem_runs) {
+    // The network's fabric invariant is a_c itself: A:n_c / a_cs with a_cs = sqrt(2/3).
+    const DemRun dem = read_dem_run(path, calibration::kSqrtTwoThirds);
+    const calibration::TestData test = calibration::read_run_file(path);
+    const net::State<double> start = net::initial_state(test);
+    NetworkInitialState initial;
+    initial.void_ratio = start.void_ratio;
+    initial.coordination = start.coordination;
+    initial.fabric = start.fabric;
+    initial.normal = start.normal;
+    initial.tangential = start.tangential;
+    const NetworkMaterial material(parameters, initial, youngs_modulus);
+    const fs::path folder = out_folder / dem.name;
+    fs::create_directories(folder);
+    log(format("\ncase %s: sigma_3 = %.4g kPa, e_0 = %.4g, Z_0 = %.4g, a_c0 = %.3g, a_n0 = %.3g",
+               dem.name.c_str(), dem.confining_pressure / 1e3, initial.void_ratio,
+               initial.coordination, net::triaxial_part(start.fabric),
+               net::triaxial_part(start.normal)));
+
+    // The material point on the element's axial strains, from the element's initial state.
+    const auto t0 = std::chrono::steady_clock::now();
+    const net::State<double> point0 = NetworkMaterial::to_model(
+        material.initial_state(-dem.confining_pressure * dealii::unit_symmetric_tensor<3>()));
+    calibration::TestData path_test = test;
+    path_test.axial_strain.clear();
+    for (unsigned int k = 0; k <= options.steps; ++k)
+      path_test.axial_strain.push_back(options.max_strain * k / options.steps);
+    const std::size_t n = path_test.axial_strain.size();
+    path_test.volumetric_strain.assign(n, 0.0);
+    path_test.eta.assign(n, 0.0);
+    path_test.void_ratio.assign(n, initial.void_ratio);
+    path_test.p.assign(n, dem.confining_pressure);
+    path_test.snapshot_axial_strain = {0.0};
+    path_test.coordination = {point0.coordination};
+    path_test.lambda = {point0.lambda};
+    path_test.a_c = {test.a_c.front()};
+    path_test.a_n = {test.a_n.front()};
+    path_test.a_t = {test.a_t.front()};
+    path_test.mobilisation = path_test.snapshot_eta = {0.0};
+    const net::Curve point =
+        net::predict(parameters, path_test, {}, dem.confining_pressure);  // the FE's traction
+    Curve driver;
+    driver.label = "driver";
+    driver.completed = point.complete;
+    driver.message = point.message;
+    for (std::size_t k = 0; k < point.axial_strain.size(); ++k)
+      driver.points.push_back(curve_point(point.axial_strain[k], point.volumetric_strain[k],
+                                          point.p[k], point.q[k], point.void_ratio[k],
+                                          point.a_c[k]));
+    driver.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_curve_csv((folder / "driver.csv").string(), driver);
+    log("  " + run_line(driver, options.steps));
+
+    AcstMeshOptions element_options;
+    element_options.verbose = options.verbose;
+    const Curve element = run_fe_triaxial(material, dem.confining_pressure, loading, element_options);
+    write_curve_csv((folder / "element.csv").string(), element);
+    log("  " + run_line(element, options.steps));
+    result.runs_completed = result.runs_completed && driver.completed && element.completed;
+    add_path_checks(result.checks, dem.name, "element vs driver", element, driver,
+                    kNetworkDriverTolerance);
+    if (options.mesh) {
+      const Curve mesh = run_fe_triaxial(material, dem.confining_pressure, loading,
+                                         check_mesh_options(folder, options.verbose));
+      write_curve_csv((folder / "mesh.csv").string(), mesh);
+      log("  " + run_line(mesh, options.steps));
+      result.runs_completed = result.runs_completed && mesh.completed;
+      add_path_checks(result.checks, dem.name, "mesh vs element", mesh, element);
+    }
+    add_dem_checks(result.checks, dem.name, folder, element, dem, options);
+  }
+  write_summary(out_folder, result.checks);
+  return result;
+}
+
+#endif  // SFFCAL_FE_CHECK_NETWORK
 
 }  // namespace
 
@@ -154,6 +309,19 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
   if (!calibration::is_admissible_void_ratio(options.void_ratio))
     throw std::invalid_argument("--void-ratio " + format_value(options.void_ratio) +
                                 " is not a void ratio the model can carry: it must be in (0, 2.97)");
+
+  const std::string model = calibration::parameter_file_model(options.parameters_path);
+  if (model == "contact_network") {
+#ifdef SFFCAL_FE_CHECK_NETWORK
+    return run_network_fe_check(options, log);
+#else
+    throw std::invalid_argument("the contact-network fe-check needs the fits' library: this "
+                                "sffcal was configured with SFFCAL_BUILD_CALIBRATION=OFF");
+#endif
+  }
+  if (model != "acst")
+    throw std::invalid_argument("parameter file '" + options.parameters_path + "': model '" +
+                                model + "' (fe-check reads \"acst\" and \"contact_network\")");
 
   // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
   const calibration::Parameters<double> parameters =
@@ -236,50 +404,18 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
     add_path_checks(checks, c.name, "element vs driver", element, driver);
 
     if (options.mesh) {
-      AcstMeshOptions mesh_options;
-      mesh_options.cells_x = mesh_options.cells_y = 2;
-      mesh_options.cells_z = 4;
-      mesh_options.verbose = options.verbose;
-      fs::create_directories(folder / "vtu");
-      mesh_options.vtu_prefix = (folder / "vtu" / "mesh").string();
-      const Curve mesh =
-          run_acst_fe_triaxial(parameters, c.specimen, loading, mesh_options);
+      const Curve mesh = run_acst_fe_triaxial(parameters, c.specimen, loading,
+                                              check_mesh_options(folder, options.verbose));
       write_curve_csv((folder / "mesh.csv").string(), mesh);
       log("  " + run_line(mesh, options.steps));
       runs_completed = runs_completed && mesh.completed;
       add_path_checks(checks, c.name, "mesh vs element", mesh, element);
     }
 
-    if (c.dem) {
-      write_curve_csv((folder / "dem.csv").string(), c.dem->curve);
-      if (!c.dem->fabric.points.empty())
-        write_curve_csv((folder / "dem_fabric.csv").string(), c.dem->fabric);
-      const DemError error = compare_with_dem(element, c.dem->curve);
-      const std::string note = std::to_string(error.points) + " DEM points to eps_a = " +
-                               format_value(element.points.empty()
-                                                ? 0.0
-                                                : element.points.back().axial_strain);
-      FeCheckRow eta{c.name, "FE vs DEM", "q/p (RMS)", error.eta_rms, options.dem_eta_tolerance,
-                   error.points > 0 && error.eta_rms <= options.dem_eta_tolerance, false, note};
-      FeCheckRow ev{c.name,
-                  "FE vs DEM",
-                  "eps_v (RMS)",
-                  error.volumetric_strain_rms,
-                  options.dem_volumetric_tolerance,
-                  error.points > 0 && error.volumetric_strain_rms <= options.dem_volumetric_tolerance,
-                  false,
-                  note};
-      checks.push_back(eta);
-      checks.push_back(ev);
-    }
+    if (c.dem) add_dem_checks(checks, c.name, folder, element, *c.dem, options);
   }
 
-  std::ofstream summary(out_folder / "summary.csv");
-  summary << "case,check,quantity,value,tolerance,result,note\n" << std::setprecision(6);
-  for (const FeCheckRow& row : checks)
-    summary << row.case_name << ',' << row.check << ',' << row.quantity << ',' << row.value << ','
-            << row.tolerance << ',' << (row.pass ? "pass" : "fail") << ",\"" << row.note << "\"\n";
-  if (!summary) throw std::runtime_error("cannot write " + (out_folder / "summary.csv").string());
+  write_summary(out_folder, checks);
   return result;
 }
 

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include "calibration/network_fit.h"
+#include "fe_model/fe_check.h"
 #include "fe_model/triaxial.h"
 
 namespace fe_model {
@@ -174,6 +176,43 @@ TEST(NetworkMaterial, AHugeExtensionStepEndsCleanly) {
                 std::isfinite(step.volumetric_strain));
     EXPECT_GT(step.p, 0.0);
   }
+}
+
+// fe-check with a contact-network parameter file: the element against the material point and the
+// mesh against the element pass their verification tolerances on a DEM run's network; without a
+// DEM run there is no initial network, refused by name.
+TEST(NetworkMaterial, FeCheckVerifiesTheElementAgainstTheMaterialPoint) {
+  FeCheckOptions options;
+  options.parameters_path =
+      std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/network_paper_params.json";
+  options.output_folder = ::testing::TempDir() + "network_fe_check";
+  std::filesystem::remove_all(options.output_folder);
+  options.max_strain = 0.04;
+  options.steps = 8;
+  try {
+    run_fe_check(options, [](const std::string&) {});
+    FAIL() << "a contact-network check without a DEM run was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--dem"), std::string::npos) << e.what();
+  }
+  options.dem_runs = {std::string(SFFCAL_SOURCE_DIR) +
+                      "/tests/data/reference/matrix/iso_dense_100kPa.h5"};
+  const FeCheckResult result = run_fe_check(options, [](const std::string& line) {
+    std::cout << line << '\n';
+  });
+  EXPECT_TRUE(result.runs_completed);
+  int verification = 0, dem = 0;
+  for (const FeCheckRow& row : result.checks) {
+    (row.verification ? verification : dem)++;
+    if (row.verification) {
+      EXPECT_TRUE(row.pass) << row.check << ' ' << row.quantity << ' ' << row.value;
+    }
+  }
+  EXPECT_EQ(verification, 4);  // element vs driver, mesh vs element: q and eps_v
+  EXPECT_EQ(dem, 2);
+  EXPECT_NE(result.exit_code(), 1);
+  EXPECT_TRUE(std::filesystem::exists(options.output_folder + "/iso_dense_100kPa/element.csv"));
+  std::filesystem::remove_all(options.output_folder);
 }
 
 TEST(NetworkMaterial, RefusesNonPhysicalInputByName) {

@@ -222,6 +222,10 @@ bool is_admissible_void_ratio(double e);
 /// Parameters from the calibration output (JSON, see docs/model.md); throws std::runtime_error
 /// naming the missing/invalid key.
 Parameters<double> read_parameters_json(const std::string& path);
+/// The material a parameter file is for: its key "model", "acst" where absent (files of the first
+/// versions), e.g. "contact_network" (calibration/network_model.h). Throws std::runtime_error
+/// naming the file if it cannot be read or is not a JSON object.
+std::string parameter_file_model(const std::string& path);
 /// Writes the layout read_parameters_json reads (each parameter with value and unit).
 void write_parameters_json(const Parameters<double>& par, const std::string& path);
 

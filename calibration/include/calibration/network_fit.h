@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,7 +79,12 @@ Curve follow_strain_path(const Parameters<double>& par, const TestData& test,
 /// Predicts the test from initial_state on its own loading path: drained (the lateral stress held
 /// at its initial value, the lateral strain found by Newton) or undrained (constant volume), at
 /// the DEM's axial strains. Stops with complete = false where an increment cannot be solved.
-Curve predict(const Parameters<double>& par, const TestData& test, const FitOptions& options = {});
+/// lateral_stress [Pa, compression positive]: the drained path's lateral stress where given (an FE
+/// specimen under a confining traction holds sigma_3, not the initial SFF stress's sigma_xx, which
+/// differs from it by the SFF equation's error and the initial anisotropies); otherwise the
+/// initial state's own sigma_xx, as the fit holds it.
+Curve predict(const Parameters<double>& par, const TestData& test, const FitOptions& options = {},
+              std::optional<double> lateral_stress = std::nullopt);
 
 /// RMS errors of a curve against its test: eta and volumetric strain over the rows after the
 /// first, the micro variables over the snapshots after the first (Lambda relative).

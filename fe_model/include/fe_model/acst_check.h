@@ -20,6 +20,8 @@
 
 namespace fe_model {
 
+class Material;  // fe_model/material.h (deal.II tensors): only referred to here
+
 /// The consolidated specimen: isotropic stress sigma_3, void ratio, model fabric F_0.
 struct AcstSpecimen {
   double confining_pressure = 100e3;  ///< sigma_3 = p_0 [Pa], held during the drained test
@@ -96,6 +98,11 @@ Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters
 Curve run_acst_fe_triaxial(const calibration::Parameters<double>& parameters,
                            const AcstSpecimen& specimen, const AcstLoading& loading,
                            const AcstMeshOptions& mesh);
+
+/// The same FE problem with any material at every quadrature point (the contact-network model's
+/// fe-check runs through it; loading.integration is the material's business, not used here).
+Curve run_fe_triaxial(const Material& material, double confining_pressure,
+                      const AcstLoading& loading, const AcstMeshOptions& mesh);
 
 /// Relative errors of a curve against a reference computed at the same axial strains (same
 /// steps): for x in {q, eps_v}, max_i |x_i - x_ref,i| / max_i |x_ref,i| over the common points.
