@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "fe_model/triaxial.h"
+#include "material_checks.h"
 
 namespace fe_model {
 namespace {
@@ -54,28 +55,6 @@ TEST(AcstMaterial, ConvertsSignsAndPacksTheState) {
   EXPECT_NEAR(*material.fabric_invariant(state), 0.0, 1e-15);
 }
 
-// max |C : dir - FD| / max |C : dir| over the six strain directions, central differences.
-double adapter_tangent_error(const AcstMaterial& material, const PointState& start,
-                             const SymmetricTensor2& de, double h) {
-  PointState end;
-  const MaterialUpdate update = material.update(start, de, end);
-  EXPECT_NE(update.status, MaterialStatus::kFailed) << update.message;
-  double max_error = 0.0, max_entry = 0.0;
-  for (unsigned int k = 0; k < 3; ++k)
-    for (unsigned int l = k; l < 3; ++l) {
-      SymmetricTensor2 dir;
-      dir[k][l] = 1.0;
-      PointState plus, minus;
-      material.update(start, de + h * dir, plus);
-      material.update(start, de - h * dir, minus);
-      const SymmetricTensor2 fd = (plus.stress - minus.stress) / (2.0 * h);
-      const SymmetricTensor2 analytic = update.tangent * dir;
-      max_error = std::max(max_error, (fd - analytic).norm());
-      max_entry = std::max(max_entry, analytic.norm());
-    }
-  return max_error / max_entry;
-}
-
 PointState triaxial_start(const AcstMaterial& material) {
   SymmetricTensor2 stress = -100e3 * dealii::unit_symmetric_tensor<3>();
   stress[2][2] = -140e3;
@@ -88,7 +67,7 @@ TEST(AcstMaterial, TangentMatchesFiniteDifferencesInTheElasticRange) {
   de[2][2] = 2e-5;
   de[0][0] = -0.5e-5;
   de[1][1] = -0.5e-5;
-  const double error = adapter_tangent_error(material, triaxial_start(material), de, 1e-8);
+  const double error = checks::tangent_error(material, triaxial_start(material), de, 1e-8);
   std::cout << "ACST adapter tangent vs finite differences, elastic: " << error << '\n';
   EXPECT_LT(error, 1e-5);
 }
@@ -112,7 +91,7 @@ TEST(AcstMaterial, TangentMatchesFiniteDifferencesInPlasticLoading) {
   const double alpha_change =
       (AcstMaterial::to_model(end).alpha - AcstMaterial::to_model(start).alpha).norm();
   EXPECT_GT(alpha_change, 1e-6) << "the increment should be plastic (alpha evolves)";
-  const double error = adapter_tangent_error(material, start, de, 1e-8);
+  const double error = checks::tangent_error(material, start, de, 1e-8);
   std::cout << "ACST adapter tangent vs finite differences, plastic (|d alpha| = " << alpha_change
             << "): " << error << '\n';
   EXPECT_LT(error, 1e-4);

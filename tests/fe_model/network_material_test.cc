@@ -12,6 +12,7 @@
 #include "calibration/network_fit.h"
 #include "fe_model/fe_check.h"
 #include "fe_model/triaxial.h"
+#include "material_checks.h"
 
 namespace fe_model {
 namespace {
@@ -59,22 +60,9 @@ TEST(NetworkMaterial, TangentMatchesFiniteDifferencesOfTheUpdate) {
   PointState end;
   const MaterialUpdate update = material.update(start, de, end);
   ASSERT_EQ(update.status, MaterialStatus::kOk) << update.message;
-  const double h = 1e-7;
-  double max_error = 0.0, max_entry = 0.0;
-  for (unsigned int k = 0; k < 3; ++k)
-    for (unsigned int l = k; l < 3; ++l) {
-      SymmetricTensor2 dir;
-      dir[k][l] = 1.0;  // a symmetric tensor: moves eps_kl and eps_lk together
-      PointState plus, minus;
-      material.update(start, de + h * dir, plus);
-      material.update(start, de - h * dir, minus);
-      const SymmetricTensor2 fd = (plus.stress - minus.stress) / (2.0 * h);
-      const SymmetricTensor2 exact = update.tangent * dir;
-      max_error = std::max(max_error, (fd - exact).norm());
-      max_entry = std::max(max_entry, exact.norm());
-    }
-  std::cout << "contact-network tangent vs finite differences: " << max_error / max_entry << '\n';
-  EXPECT_LT(max_error / max_entry, 1e-6);
+  const double error = checks::tangent_error(material, start, de, 1e-7);
+  std::cout << "contact-network tangent vs finite differences: " << error << '\n';
+  EXPECT_LT(error, 1e-6);
 }
 
 TEST(NetworkMaterial, OneElementDrainedTriaxialIsTheMaterialPointPrediction) {
@@ -140,14 +128,7 @@ TEST(NetworkMaterial, ARoughPlatenMeshConvergesQuadratically) {
   for (const StepReport& report : result.reports) {
     const NewtonLog& log = report.attempts.back();
     ASSERT_TRUE(log.converged);
-    const double floor = 1e-12 * log.force_scale;
-    double last_order = 0.0;
-    for (std::size_t k = 1; k + 1 < log.residual_norms.size(); ++k) {
-      const double r0 = log.residual_norms[k - 1], r1 = log.residual_norms[k],
-                   r2 = log.residual_norms[k + 1];
-      if (r2 < floor) break;
-      last_order = std::log(r2 / r1) / std::log(r1 / r0);
-    }
+    const double last_order = checks::last_convergence_order(log, 1e-12 * log.force_scale);
     std::cout << "load " << log.load_end << ": " << log.iterations << " Newton iterations, order "
               << last_order << '\n';
     EXPECT_GT(last_order, 1.8) << "load " << log.load_end;

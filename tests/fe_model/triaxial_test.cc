@@ -2,6 +2,7 @@
 // mesh, Newton convergence (one iteration for linear elasticity, quadratic for a nonlinear law),
 // step cutting on an induced material failure, CSV/VTU output.
 #include "fe_model/triaxial.h"
+#include "material_checks.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -131,15 +132,8 @@ TEST(Triaxial, NewtonConvergesQuadraticallyForANonlinearMaterial) {
     for (double ratio : quadratic) EXPECT_LT(ratio, 10.0);
     // ... and the order log(r_k+1/r_k)/log(r_k/r_k-1) tends to 2 (pre-asymptotic iterates lower;
     // the last pair above round-off is checked).
-    const double floor = 1e-13 * log.force_scale;
-    double last_order = 0.0;
-    for (std::size_t k = 1; k + 1 < log.residual_norms.size(); ++k) {
-      const double r0 = log.residual_norms[k - 1], r1 = log.residual_norms[k],
-                   r2 = log.residual_norms[k + 1];
-      if (r2 < floor) break;
-      last_order = std::log(r2 / r1) / std::log(r1 / r0);
-      std::cout << "  order estimate at k = " << k + 1 << ": " << last_order << '\n';
-    }
+    const double last_order =
+        checks::last_convergence_order(log, 1e-13 * log.force_scale, &std::cout);
     EXPECT_GT(last_order, 1.8);
   }
 }
