@@ -12,6 +12,8 @@ install(FILES
   calibration/include/calibration/acst_implicit.h
   calibration/include/calibration/umat.h
   calibration/include/calibration/network_model.h
+  calibration/include/calibration/network_update.h
+  calibration/include/calibration/umat_network.h
   DESTINATION include/calibration)
 set(SFFCAL_INSTALL_FE_MODEL OFF)
 if(TARGET fe_model)

@@ -3,14 +3,11 @@
 // step cut through PNEWDT.
 #include "calibration/umat.h"
 
-#include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <mutex>
 #include <string>
 
 #include "calibration/acst_model.h"
+#include "umat_common.h"
 
 namespace {
 
@@ -18,27 +15,9 @@ using calibration::Parameters;
 using calibration::State;
 using calibration::Tensor;
 
-thread_local std::string last_message;
-
-// Abaqus order 11, 22, 33, 12, 13, 23.
-constexpr int kRow[6] = {0, 1, 2, 0, 0, 1};
-constexpr int kCol[6] = {0, 1, 2, 1, 2, 2};
-
-// A symmetric tensor from the first `n` Abaqus components (the others 0); `shear_scale` 0.5 turns
-// engineering shear strains into tensor ones.
-Tensor<double> from_abaqus(const double* v, int n, double sign, double shear_scale) {
-  Tensor<double> t = Tensor<double>::Zero();
-  for (int k = 0; k < n; ++k) {
-    const double x = sign * v[k] * (k < 3 ? 1.0 : shear_scale);
-    t(kRow[k], kCol[k]) = x;
-    t(kCol[k], kRow[k]) = x;
-  }
-  return t;
-}
-
-void to_abaqus(const Tensor<double>& t, double* v, int n, double sign) {
-  for (int k = 0; k < n; ++k) v[k] = sign * t(kRow[k], kCol[k]);
-}
+using calibration::umat_detail::from_abaqus;
+using calibration::umat_detail::report;
+using calibration::umat_detail::to_abaqus;
 
 // The parameters in the order of umat.h (that of kParameterFields): the first `count` from
 // PROPS, the rest (added after the first version, e.g. n_b_loose) at their value_if_absent.
@@ -51,28 +30,13 @@ Parameters<double> parameters_from(const double* p, int count) {
   return par;
 }
 
-// The parameter file named by SFFCAL_ACST_PARAMETERS, read once per path (thread-safe).
+// The parameter file named by SFFCAL_ACST_PARAMETERS, read once per path.
 Parameters<double> parameters_from_file() {
-  static std::mutex mutex;
-  static std::string path_read, error;
-  static Parameters<double> cached;
-  const char* path = std::getenv("SFFCAL_ACST_PARAMETERS");
-  if (!path || !*path)
-    throw std::runtime_error(
-        "NPROPS < 22 and no parameter file: set SFFCAL_ACST_PARAMETERS to the ACST parameter "
-        "file (JSON), or give the 15 parameters in PROPS(8..22)");
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (path_read != path) {
-    path_read = path;
-    error.clear();
-    try {
-      cached = calibration::read_parameters_json(path);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  if (!error.empty()) throw std::runtime_error(error);
-  return cached;
+  return calibration::umat_detail::read_file_once<Parameters<double>>(
+      "SFFCAL_ACST_PARAMETERS",
+      "NPROPS < 22 and no parameter file: set SFFCAL_ACST_PARAMETERS to the ACST parameter file "
+      "(JSON), or give the 15 parameters in PROPS(8..22)",
+      [](const std::string& path) { return calibration::read_parameters_json(path); });
 }
 
 // Hypoelastic stiffness of Eq. (1) at the state, Abaqus layout (engineering shear), for DDSDDE
@@ -88,18 +52,9 @@ void elastic_ddsdde(const Parameters<double>& par, const State<double>& s, doubl
   for (int k = 3; k < n; ++k) ddsdde[k + n * k] = G;
 }
 
-void report(const std::string& message, const int* noel, const int* npt, double* pnewdt) {
-  last_message = message;
-  std::fprintf(stderr, "sffcal_umat: element %d point %d: %s; asking for a smaller increment\n",
-               noel ? *noel : -1, npt ? *npt : -1, message.c_str());
-  if (pnewdt) *pnewdt = std::min(*pnewdt, 0.5);
-}
-
 }  // namespace
 
 extern "C" {
-
-const char* sffcal_umat_last_message(void) { return last_message.c_str(); }
 
 void sffcal_umat(double* stress, double* statev, double* ddsdde, double* /*sse*/,
                  double* /*spd*/, double* /*scd*/, double* /*rpl*/, double* /*ddsddt*/,
@@ -113,16 +68,10 @@ void sffcal_umat(double* stress, double* statev, double* ddsdde, double* /*sse*/
                  const double* /*dfgrd1*/, const int* noel, const int* npt, const int* /*layer*/,
                  const int* /*kspt*/, const int* /*kstep*/, const int* /*kinc*/,
                  size_t /*cmname_length*/) {
-  last_message.clear();
+  calibration::umat_detail::last_message().clear();
   const int n = *ntens;
   try {
-    if (*ndi != 3 || !((*nshr == 3 && n == 6) || (*nshr == 1 && n == 4)))
-      throw std::runtime_error("NDI = " + std::to_string(*ndi) + ", NSHR = " +
-                               std::to_string(*nshr) + ": only 3D (NTENS = 6) and plane strain or "
-                               "axisymmetric elements (NTENS = 4) are supported");
-    if (*nstatv < SFFCAL_UMAT_NSTATV)
-      throw std::runtime_error("NSTATV = " + std::to_string(*nstatv) + ", at least " +
-                               std::to_string(static_cast<int>(SFFCAL_UMAT_NSTATV)) + " needed");
+    calibration::umat_detail::check_layout(*ndi, *nshr, n, *nstatv, SFFCAL_UMAT_NSTATV);
     if (*nprops < SFFCAL_UMAT_NPROPS_STATE)
       throw std::runtime_error("NPROPS = " + std::to_string(*nprops) +
                                ": PROPS(1..7) must give e_0 and F_0");
@@ -161,12 +110,7 @@ void sffcal_umat(double* stress, double* statev, double* ddsdde, double* /*sse*/
       return;
     }
     to_abaqus(end.stress, stress, n, -1.0);
-    // DDSDDE(I, J) = d sigma_I / d eps_J with engineering shear: the symmetrised D(ij, kl) for
-    // a shear J = kl (d sigma_ij = D(ij,kl) d gamma_kl), D(ij, kk) for a normal one; the two sign
-    // flips cancel.
-    for (int I = 0; I < n; ++I)
-      for (int J = 0; J < n; ++J)
-        ddsdde[I + n * J] = D(3 * kRow[I] + kCol[I], 3 * kRow[J] + kCol[J]);
+    calibration::umat_detail::to_ddsdde(D, ddsdde, n);
     statev[SFFCAL_UMAT_STATE_INITIALISED] = 1.0;
     statev[SFFCAL_UMAT_STATE_VOID_RATIO] = end.void_ratio;
     to_abaqus(end.alpha, statev + SFFCAL_UMAT_STATE_ALPHA, 6, 1.0);

@@ -1,13 +1,11 @@
 // The contact-network adapter: calibration/network_model.h behind fe_model::Material.
 #include "fe_model/network_material.h"
 
-#include <ceres/jet.h>
-
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "calibration/network_update.h"
 #include "tensor_conversion.h"
 
 namespace fe_model {
@@ -18,19 +16,6 @@ using internal::pack;
 using internal::to_deal;
 using internal::to_eigen;
 using internal::unpack;
-
-// An increment needing more substeps fails, so that the FE code cuts it.
-constexpr int kMaxSubsteps = 10000;
-
-// Voigt order of the independent strain components seeded in the tangent's dual numbers.
-constexpr int kI[6] = {0, 1, 2, 0, 1, 0};
-constexpr int kJ[6] = {0, 1, 2, 1, 2, 2};
-
-bool admissible(const net::State<double>& s) {
-  return std::isfinite(s.void_ratio) && s.void_ratio > 0.0 && std::isfinite(s.coordination) &&
-         s.coordination > 0.0 && std::isfinite(s.lambda) && s.lambda > 0.0 &&
-         s.fabric.allFinite() && s.normal.allFinite() && s.tangential.allFinite();
-}
 
 }  // namespace
 
@@ -81,9 +66,7 @@ PointState NetworkMaterial::initial_state(const SymmetricTensor2& initial_stress
                                 std::to_string(p) + " Pa)");
   net::State<double> model{initial_.void_ratio, initial_.coordination, 0.0, initial_.fabric,
                            initial_.normal, initial_.tangential};
-  const double product = 1.0 + 2.0 / 15.0 * (initial_.normal * initial_.fabric).trace();
-  model.lambda = 3.0 * p * (1.0 + model.void_ratio) /
-                 (youngs_modulus_ * model.coordination * product);
+  model.lambda = net::lambda_for_mean_stress(model, p, youngs_modulus_);
   PointState state;
   from_model(model, SymmetricTensor2(), state);
   return state;
@@ -92,59 +75,22 @@ PointState NetworkMaterial::initial_state(const SymmetricTensor2& initial_stress
 MaterialUpdate NetworkMaterial::update(const PointState& start,
                                        const SymmetricTensor2& strain_increment,
                                        PointState& end) const {
-  using Dual = ceres::Jet<double, 6>;
-  const net::State<double> s0 = to_model(start);
   const Eigen::Matrix3d increment = -to_eigen(strain_increment);  // -> compression positive
-  // Dual numbers seeded on the six independent components (eps_kl and eps_lk move together).
-  net::Tensor<Dual> d;
-  for (int a = 0; a < 6; ++a) {
-    Dual x(increment(kI[a], kJ[a]), a);
-    d(kI[a], kJ[a]) = d(kJ[a], kI[a]) = x;
-  }
-  auto lift = [](double x) { return Dual(x); };
-  const net::State<Dual> s0_dual{lift(s0.void_ratio),           lift(s0.coordination),
-                                 lift(s0.lambda),               s0.fabric.unaryExpr(lift),
-                                 s0.normal.unaryExpr(lift),     s0.tangential.unaryExpr(lift)};
-  const auto par = net::to_array(parameters_);
-  std::array<Dual, net::kNumParameters> par_dual;
-  for (int i = 0; i < net::kNumParameters; ++i) par_dual[i] = Dual(par[i]);
-  const int substeps = net::substeps_for(parameters_, s0, increment.norm());
-  if (substeps > kMaxSubsteps) {
-    MaterialUpdate failed;
-    failed.status = MaterialStatus::kFailed;
-    failed.message = "contact-network update: the strain increment of norm " +
-                     std::to_string(increment.norm()) + " needs " + std::to_string(substeps) +
-                     " RK4 substeps, more than " + std::to_string(kMaxSubsteps) + " (cut it)";
-    end = start;
-    return failed;
-  }
-  const net::State<Dual> s1 =
-      net::integrate(net::from_array(par_dual.data()), s0_dual, d, substeps);
-  auto value = [](const Dual& x) { return x.a; };
-  const net::State<double> model_end{s1.void_ratio.a,           s1.coordination.a,
-                                     s1.lambda.a,               s1.fabric.unaryExpr(value),
-                                     s1.normal.unaryExpr(value), s1.tangential.unaryExpr(value)};
+  const net::UpdateResult update =
+      net::update_with_tangent(parameters_, to_model(start), increment, youngs_modulus_);
   MaterialUpdate result;
-  if (!admissible(model_end)) {
-    std::ostringstream why;
-    why << "contact-network update failed: the state left its admissible range (e "
-        << model_end.void_ratio << ", Z " << model_end.coordination << ", Lambda "
-        << model_end.lambda << ") over the strain increment of norm " << increment.norm();
+  if (!update.ok) {
     result.status = MaterialStatus::kFailed;
-    result.message = why.str();
+    result.message = update.message;
     end = start;  // never hand NaN to the caller
     return result;
   }
-  from_model(model_end, start.strain + strain_increment, end);
-  // d sigma_ij / d eps_kl: a shear seed moved eps_kl and eps_lk together, so it carries twice the
-  // tensor component. Both signs flip, so the tension-positive tangent is the same.
-  const net::Tensor<Dual> sigma = net::stress(s1, youngs_modulus_);
+  from_model(update.end, start.strain + strain_increment, end);
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int j = i; j < 3; ++j)
-      for (int a = 0; a < 6; ++a) {
-        const double dij = 0.5 * (sigma(i, j).v[a] + sigma(j, i).v[a]);
-        result.tangent[i][j][kI[a]][kJ[a]] = kI[a] == kJ[a] ? dij : 0.5 * dij;
-      }
+      for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int l = k; l < 3; ++l)
+          result.tangent[i][j][k][l] = update.tangent(3 * i + j, 3 * k + l);
   return result;
 }
 

@@ -12,39 +12,19 @@
 
 #include "calibration/umat.h"
 #include "reference.h"
-
-void umat_(double* stress, double* statev, double* ddsdde, double* sse, double* spd, double* scd,
-           double* rpl, double* ddsddt, double* drplde, double* drpldt, const double* stran,
-           const double* dstran, const double* time, const double* dtime, const double* temp,
-           const double* dtemp, const double* predef, const double* dpred, const char* cmname,
-           const int* ndi, const int* nshr, const int* ntens, const int* nstatv,
-           const double* props, const int* nprops, const double* coords, const double* drot,
-           double* pnewdt, const double* celent, const double* dfgrd0, const double* dfgrd1,
-           const int* noel, const int* npt, const int* layer, const int* kspt, const int* kstep,
-           const int* kinc, size_t cmname_length);
-
-static int failures = 0;
-
-static void check(int ok, const char* what, double figure) {
-  printf("%-4s %-68s %.3e\n", ok ? "ok" : "FAIL", what, figure);
-  if (!ok) ++failures;
-}
+#include "umat_driver.h"
 
 static const double kP0 = 100e3;    /* initial isotropic stress [Pa] */
 static const double kE0 = 0.80;     /* initial void ratio */
 static const double kFabric = 0.3;  /* model fabric norm, along the z axis */
 
-/* One integration point: what Abaqus keeps between increments. */
-typedef struct {
-  int ntens, nprops;
-  double stress[6], statev[SFFCAL_UMAT_NSTATV], stran[6], props[SFFCAL_UMAT_NPROPS_MAX];
-} Point;
-
 static Point make_point(const double* parameters, int ntens, int nprops) {
   Point pt;
   memset(&pt, 0, sizeof pt);
   pt.ntens = ntens;
+  pt.nstatv = SFFCAL_UMAT_NSTATV;
   pt.nprops = nprops;
+  pt.cmname = "SFFCAL"; /* any name not beginning with CONTACT_NETWORK: the ACST entry */
   for (int i = 0; i < 3; ++i) pt.stress[i] = -kP0; /* tension positive */
   pt.props[SFFCAL_UMAT_PROP_VOID_RATIO] = kE0;
   const double k = kFabric / sqrt(6.0);
@@ -54,63 +34,6 @@ static Point make_point(const double* parameters, int ntens, int nprops) {
   for (int i = SFFCAL_UMAT_PROP_PARAMETERS; i < nprops; ++i)
     pt.props[i] = parameters[i - SFFCAL_UMAT_PROP_PARAMETERS];
   return pt;
-}
-
-/* Calls the UMAT from pt with the strain increment dstran; pt is updated only when commit is set.
- * Returns PNEWDT (1 when the UMAT asked for nothing). */
-static double call_umat(Point* pt, const double* dstran, double* stress_out, double* ddsdde,
-                        int commit) {
-  Point trial = *pt;
-  double sse = 0, spd = 0, scd = 0, rpl = 0, ddsddt[6] = {0}, drplde[6] = {0}, drpldt = 0;
-  double time[2] = {0, 0}, dtime = 1, temp = 0, dtemp = 0, predef = 0, dpred = 0;
-  double coords[3] = {0}, drot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, celent = 1;
-  double dfgrd[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, pnewdt = 1.0;
-  int ndi = 3, nshr = trial.ntens - 3, nstatv = SFFCAL_UMAT_NSTATV, noel = 1, npt = 1;
-  int layer = 1, kspt = 1, kstep = 1, kinc = 1;
-  umat_(trial.stress, trial.statev, ddsdde, &sse, &spd, &scd, &rpl, ddsddt, drplde, &drpldt,
-        trial.stran, dstran, time, &dtime, &temp, &dtemp, &predef, &dpred, "SFFCAL", &ndi, &nshr,
-        &trial.ntens, &nstatv, trial.props, &trial.nprops, coords, drot, &pnewdt, &celent, dfgrd,
-        dfgrd, &noel, &npt, &layer, &kspt, &kstep, &kinc, 6);
-  if (stress_out) memcpy(stress_out, trial.stress, sizeof trial.stress);
-  if (commit) {
-    for (int i = 0; i < trial.ntens; ++i) trial.stran[i] += dstran[i];
-    *pt = trial;
-  }
-  return pnewdt;
-}
-
-/* Drained triaxial compression through the UMAT: per increment the axial strain is prescribed
- * and the lateral strains found by Newton on DDSDDE until the lateral stresses are -p0 to
- * 1e-12 p0. Fills q [Pa] and eps_v (compression positive). Returns 0, or -1 when an increment
- * asked for a smaller step or did not converge. */
-static int umat_drained_triaxial(Point* pt, double axial_strain_end, int increments, double* q,
-                                 double* volumetric_strain) {
-  double lateral[2] = {0.0, 0.0};
-  for (int n = 0; n < increments; ++n) {
-    double dstran[6] = {0}, stress[6], ddsdde[36];
-    dstran[2] = -axial_strain_end / increments;
-    int converged = 0;
-    for (int iteration = 0; iteration < 30 && !converged; ++iteration) {
-      dstran[0] = lateral[0];
-      dstran[1] = lateral[1];
-      if (call_umat(pt, dstran, stress, ddsdde, 0) < 1.0) return -1;
-      const double r0 = stress[0] + kP0, r1 = stress[1] + kP0;
-      if (fabs(r0) <= 1e-12 * kP0 && fabs(r1) <= 1e-12 * kP0) {
-        converged = 1;
-        break;
-      }
-      const int m = pt->ntens; /* DDSDDE(I, J) at ddsdde[I + m J] */
-      const double a = ddsdde[0], b = ddsdde[m], c = ddsdde[1], d = ddsdde[1 + m];
-      const double det = a * d - b * c;
-      lateral[0] -= (d * r0 - b * r1) / det;
-      lateral[1] -= (a * r1 - c * r0) / det;
-    }
-    if (!converged) return -1;
-    call_umat(pt, dstran, NULL, (double[36]){0}, 1);
-    q[n] = -pt->stress[2] + 0.5 * (pt->stress[0] + pt->stress[1]);
-    volumetric_strain[n] = -(pt->stran[0] + pt->stran[1] + pt->stran[2]);
-  }
-  return 0;
 }
 
 enum { kIncrements = 400 }; /* 5e-4 each: first loading within max_step_error */
@@ -125,7 +48,7 @@ static void drained_path_matches_driver(const double* parameters) {
     return;
   }
   Point pt = make_point(parameters, 6, SFFCAL_UMAT_NPROPS_ALL);
-  check(umat_drained_triaxial(&pt, kAxialStrainEnd, kIncrements, q, ev) == 0,
+  check(umat_drained_triaxial(&pt, kP0, kAxialStrainEnd, kIncrements, q, ev) == 0,
         "drained path through the UMAT (parameters in PROPS) converges", 0.0);
   double q_error = 0.0, ev_error = 0.0, ev_scale = 0.0, q_peak = 0.0;
   for (int n = 0; n < kIncrements; ++n) {
@@ -149,14 +72,14 @@ static void drained_path_matches_driver(const double* parameters) {
 
   /* The parameters from the file named by SFFCAL_ACST_PARAMETERS (NPROPS = 7): same path. */
   Point from_file = make_point(parameters, 6, SFFCAL_UMAT_NPROPS_STATE);
-  umat_drained_triaxial(&from_file, kAxialStrainEnd, kIncrements, q_env, ev_env);
+  umat_drained_triaxial(&from_file, kP0, kAxialStrainEnd, kIncrements, q_env, ev_env);
   int same = 1;
   for (int n = 0; n < kIncrements; ++n) same = same && q_env[n] == q[n] && ev_env[n] == ev[n];
   check(same, "the parameter file through SFFCAL_ACST_PARAMETERS gives the same path", 0.0);
 
   /* NTENS = 4 (plane strain / axisymmetric layout): the same axisymmetric path. */
   Point four = make_point(parameters, 4, SFFCAL_UMAT_NPROPS_ALL);
-  umat_drained_triaxial(&four, kAxialStrainEnd, kIncrements, q4, ev4);
+  umat_drained_triaxial(&four, kP0, kAxialStrainEnd, kIncrements, q4, ev4);
   double four_error = 0.0;
   for (int n = 0; n < kIncrements; ++n) four_error = fmax(four_error, fabs(q4[n] - q[n]) / q[n]);
   check(four_error <= 1e-12, "NTENS = 4 gives the NTENS = 6 path, relative q difference",
@@ -165,7 +88,7 @@ static void drained_path_matches_driver(const double* parameters) {
   /* PROPS(23..25), n_b_loose, n_G and n_F: at the values NPROPS = 22 stands for, the same path; at
    * others, the driver's path with them. */
   Point all = make_point(parameters, 6, SFFCAL_UMAT_NPROPS_MAX);
-  umat_drained_triaxial(&all, kAxialStrainEnd, kIncrements, q4, ev4);
+  umat_drained_triaxial(&all, kP0, kAxialStrainEnd, kIncrements, q4, ev4);
   same = 1;
   for (int n = 0; n < kIncrements; ++n) same = same && q4[n] == q[n] && ev4[n] == ev[n];
   check(same, "NPROPS = 25 with n_b_loose = 0, n_G = 1/2, n_F = 0 gives the NPROPS = 22 path", 0.0);
@@ -181,7 +104,7 @@ static void drained_path_matches_driver(const double* parameters) {
     return;
   }
   Point with_ours = make_point(ours, 6, SFFCAL_UMAT_NPROPS_MAX);
-  umat_drained_triaxial(&with_ours, kAxialStrainEnd, kIncrements, q4, ev4);
+  umat_drained_triaxial(&with_ours, kP0, kAxialStrainEnd, kIncrements, q4, ev4);
   double ours_error = 0.0, moved = 0.0; /* moved: from the path at the defaults */
   for (int n = 0; n < kIncrements; ++n) {
     ours_error = fmax(ours_error, fabs(q4[n] - q_ref[n]) / fabs(q_ref[n]));
@@ -197,27 +120,10 @@ static void drained_path_matches_driver(const double* parameters) {
 static void ddsdde_matches_finite_differences(const double* parameters) {
   Point pt = make_point(parameters, 6, SFFCAL_UMAT_NPROPS_ALL);
   double q[20], ev[20];
-  umat_drained_triaxial(&pt, 0.02, 20, q, ev);
+  umat_drained_triaxial(&pt, kP0, 0.02, 20, q, ev);
   const double dstran[6] = {2e-4, 1e-4, -6e-4, 1.5e-4, -1e-4, 0.5e-4};
-  double ddsdde[36], stress[6];
-  call_umat(&pt, dstran, stress, ddsdde, 0);
-  double error = 0.0, scale = 0.0;
-  const double h = 1e-7;
-  for (int j = 0; j < 6; ++j) {
-    double plus[6], minus[6], sp[6], sm[6], unused[36];
-    memcpy(plus, dstran, sizeof plus);
-    memcpy(minus, dstran, sizeof minus);
-    plus[j] += h;
-    minus[j] -= h;
-    call_umat(&pt, plus, sp, unused, 0);
-    call_umat(&pt, minus, sm, unused, 0);
-    for (int i = 0; i < 6; ++i) {
-      error = fmax(error, fabs((sp[i] - sm[i]) / (2 * h) - ddsdde[i + 6 * j]));
-      scale = fmax(scale, fabs(ddsdde[i + 6 * j]));
-    }
-  }
-  check(error / scale <= 1e-6, "DDSDDE matches centred differences, error / max |DDSDDE|",
-        error / scale);
+  const double error = ddsdde_difference_error(&pt, dstran, 1e-7);
+  check(error <= 1e-6, "DDSDDE matches centred differences, error / max |DDSDDE|", error);
 }
 
 static int message_has(const char* text) {
@@ -260,7 +166,7 @@ static void failures_ask_for_a_smaller_increment(const double* parameters,
    * for a smaller increment, STRESS and STATEV keep the start state, DDSDDE stays finite. */
   Point pt = make_point(parameters, 6, SFFCAL_UMAT_NPROPS_ALL);
   double q[10], ev[10];
-  umat_drained_triaxial(&pt, 0.01, 10, q, ev);
+  umat_drained_triaxial(&pt, kP0, 0.01, 10, q, ev);
   const Point before = pt;
   const double tension[6] = {0.05, 0.05, 0.05, 0, 0, 0};
   pnewdt = call_umat(&pt, tension, NULL, ddsdde, 1);

@@ -1,0 +1,88 @@
+/* The contact-network model of sffcal (calibration/network_model.h, docs/network-model.md) behind
+ * the Abaqus/Standard UMAT calling convention (docs/fe.md, "The UMAT entry"). Conventions as for
+ * the ACST entry (calibration/umat.h): tension positive, engineering shear strains, component
+ * order 11, 22, 33, 12, 13, 23 (NTENS = 6) or 11, 22, 33, 12 (NTENS = 4), stresses in Pa.
+ * libsffcal_umat.so's umat_ calls this entry for a material whose name (CMNAME) begins with
+ * CONTACT_NETWORK (in any case), sffcal_umat (ACST) for any other.
+ *
+ * PROPS (NPROPS = 20, or >= 39 with E and the parameters), tensors in 11, 22, 33, 12, 13, 23:
+ *   PROPS(1)       initial void ratio e_0
+ *   PROPS(2)       initial coordination number Z_0
+ *   PROPS(3..8)    initial fabric anisotropy A_0 (deviatoric)
+ *   PROPS(9..14)   initial normal-force anisotropy F_0 (deviatoric)
+ *   PROPS(15..20)  initial tangential-force anisotropy F^t_0 (deviatoric)
+ *   PROPS(21)      the grains' Young's modulus E [Pa] that normalises Lambda
+ *   PROPS(22..39)  the 18 parameters kappa, z_c, zeta, k_z, c_v, a_cs, a_z, k_a, f_cs, f_z, k_f,
+ *                  t_cs, t_z, k_t, d_z, d_a, n_r, n_z (docs/network-model.md); with NPROPS = 20,
+ *                  E and the parameters are read instead from the parameter file (JSON, written
+ *                  by `sffcal calibrate --model network`) named by the environment variable
+ *                  SFFCAL_NETWORK_PARAMETERS.
+ * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
+ * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
+ * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
+ * STATEV (NSTATV >= SFFCAL_UMAT_NETWORK_NSTATV), compression positive:
+ *   STATEV(1)      0 before the first increment, 1 after
+ *   STATEV(2)      void ratio e
+ *   STATEV(3)      coordination number Z
+ *   STATEV(4)      Lambda, the mean normal contact force over E d^2 (sff-theory.md §4)
+ *   STATEV(5..10)  A
+ *   STATEV(11..16) F
+ *   STATEV(17..22) F^t
+ *   STATEV(23)     RK4 substeps of the last update
+ * DDSDDE: the exact consistent tangent (unsymmetric). A failed update (more than 10,000 substeps,
+ * or a state that leaves the admissible range), a bad PROPS, NTENS or parameter file leave STRESS
+ * and STATEV unchanged and set PNEWDT to at most 0.5, with a message on stderr and in
+ * sffcal_umat_last_message().
+ */
+#ifndef SFFCAL_CALIBRATION_UMAT_NETWORK_H_
+#define SFFCAL_CALIBRATION_UMAT_NETWORK_H_
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Zero-based offsets into STATEV and PROPS. */
+enum {
+  SFFCAL_UMAT_NETWORK_STATE_INITIALISED = 0,
+  SFFCAL_UMAT_NETWORK_STATE_VOID_RATIO = 1,
+  SFFCAL_UMAT_NETWORK_STATE_COORDINATION = 2,
+  SFFCAL_UMAT_NETWORK_STATE_LAMBDA = 3,
+  SFFCAL_UMAT_NETWORK_STATE_FABRIC = 4,
+  SFFCAL_UMAT_NETWORK_STATE_NORMAL = 10,
+  SFFCAL_UMAT_NETWORK_STATE_TANGENTIAL = 16,
+  SFFCAL_UMAT_NETWORK_STATE_SUBSTEPS = 22,
+  SFFCAL_UMAT_NETWORK_NSTATV = 23,
+  SFFCAL_UMAT_NETWORK_PROP_VOID_RATIO = 0,
+  SFFCAL_UMAT_NETWORK_PROP_COORDINATION = 1,
+  SFFCAL_UMAT_NETWORK_PROP_FABRIC = 2,
+  SFFCAL_UMAT_NETWORK_PROP_NORMAL = 8,
+  SFFCAL_UMAT_NETWORK_PROP_TANGENTIAL = 14,
+  SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS = 20,
+  SFFCAL_UMAT_NETWORK_PROP_PARAMETERS = 21,
+  SFFCAL_UMAT_NETWORK_NPROPS_STATE = 20,
+  SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39
+};
+
+void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double* sse,
+                         double* spd, double* scd, double* rpl, double* ddsddt, double* drplde,
+                         double* drpldt, const double* stran, const double* dstran,
+                         const double* time, const double* dtime, const double* temp,
+                         const double* dtemp, const double* predef, const double* dpred,
+                         const char* cmname, const int* ndi, const int* nshr, const int* ntens,
+                         const int* nstatv, const double* props, const int* nprops,
+                         const double* coords, const double* drot, double* pnewdt,
+                         const double* celent, const double* dfgrd0, const double* dfgrd1,
+                         const int* noel, const int* npt, const int* layer, const int* kspt,
+                         const int* kstep, const int* kinc, size_t cmname_length);
+
+/* Nonzero where the material name (CMNAME, of length cmname_length, blank padded as Fortran
+ * passes it) chooses the contact-network entry: it begins with CONTACT_NETWORK in any case. */
+int sffcal_umat_is_network_material(const char* cmname, size_t cmname_length);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SFFCAL_CALIBRATION_UMAT_NETWORK_H_ */
