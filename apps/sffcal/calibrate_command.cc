@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -10,11 +11,81 @@
 #include <omp.h>
 
 #include "calibration/fit.h"
+#include "calibration/network_fit.h"
 
 namespace sffcal {
+namespace {
+
+// Prints a line with the seconds since `begin`.
+std::function<void(const std::string&)> progress_printer() {
+  const auto begin = std::chrono::steady_clock::now();
+  return [begin](const std::string& line) {
+    const double t =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    std::printf("[%8.1f s] %s\n", t, line.c_str());
+    std::fflush(stdout);
+  };
+}
+
+std::vector<calibration::TestData> read_tests(const std::vector<std::string>& paths,
+                                              const char* role) {
+  std::vector<calibration::TestData> tests;
+  for (const std::string& path : paths) {
+    tests.push_back(calibration::read_run_file(path));
+    const calibration::TestData& t = tests.back();
+    std::printf("read %s (%s): %zu rows, %zu snapshots, p0 = %.0f Pa, e0 = %.4f, a_c0 = %.4f, "
+                "mu = %.4f\n",
+                path.c_str(), role, t.axial_strain.size(), t.a_c.size(), t.p0, t.e0, t.a_c0,
+                t.friction);
+  }
+  return tests;
+}
+
+void refuse_shared_runs(const std::vector<calibration::TestData>& tests,
+                        const std::vector<calibration::TestData>& held_out) {
+  for (const calibration::TestData& h : held_out)
+    for (const calibration::TestData& t : tests)
+      if (h.source == t.source)
+        throw std::runtime_error("'" + h.source + "' is both fitted and held out");
+}
+
+int calibrate_network(const std::vector<std::string>& run_paths,
+                      const CalibrateCommandOptions& options, const std::string& command_line) {
+  namespace net = calibration::network;
+  net::FitOptions fit;
+  fit.starts = options.starts;
+  fit.seed = options.seed;
+  fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  fit.progress = progress_printer();
+  const std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
+  const std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
+  refuse_shared_runs(tests, held_out);
+  for (const auto* list : {&tests, &held_out})
+    for (const calibration::TestData& t : *list) net::initial_state(t);  // names a test without Z
+  const auto start = std::chrono::steady_clock::now();
+  const net::FitResult result = net::fit(tests, net::default_start(), fit);
+  if (options.verbose) std::printf("%s\n", result.report.c_str());
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string summary = net::write_fit_outputs(options.output_folder, tests, held_out,
+                                                     result, fit, SFFCAL_VERSION, command_line);
+  std::string runs;
+  for (const auto* list : {&run_paths, &options.held_out})
+    for (const std::string& path : *list) runs += " " + path;
+  std::printf("\n%s\ncalibrated in %.1f s; outputs in %s (plot: scripts/plot_network.py %s%s -o "
+              "network.png)\n",
+              summary.c_str(), seconds, options.output_folder.c_str(),
+              options.output_folder.c_str(), runs.c_str());
+  return 0;
+}
+
+}  // namespace
 
 int calibrate_command(const std::vector<std::string>& run_paths,
                       const CalibrateCommandOptions& options, const std::string& command_line) {
+  if (options.model == "network") return calibrate_network(run_paths, options, command_line);
+  if (options.model != "acst")
+    throw std::invalid_argument("--model " + options.model + ": acst or network");
   calibration::FitOptions fit;
   fit.stages = calibration::parse_stages(options.stages);
   fit.loss = calibration::parse_loss(options.loss);
@@ -25,31 +96,10 @@ int calibrate_command(const std::vector<std::string>& run_paths,
   fit.verbose = options.verbose;
   fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   for (const std::string& range : options.ranges) calibration::set_search_range(fit, range);
-  const auto begin = std::chrono::steady_clock::now();
-  fit.progress = [begin](const std::string& line) {
-    const double t =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-    std::printf("[%8.1f s] %s\n", t, line.c_str());
-    std::fflush(stdout);
-  };
-  auto read = [](const std::vector<std::string>& paths, const char* role) {
-    std::vector<calibration::TestData> tests;
-    for (const std::string& path : paths) {
-      tests.push_back(calibration::read_run_file(path));
-      const calibration::TestData& t = tests.back();
-      std::printf("read %s (%s): %zu rows, %zu snapshots, p0 = %.0f Pa, e0 = %.4f, a_c0 = %.4f, "
-                  "mu = %.4f\n",
-                  path.c_str(), role, t.axial_strain.size(), t.a_c.size(), t.p0, t.e0, t.a_c0,
-                  t.friction);
-    }
-    return tests;
-  };
-  const std::vector<calibration::TestData> tests = read(run_paths, "fitted");
-  const std::vector<calibration::TestData> held_out = read(options.held_out, "held out");
-  for (const calibration::TestData& h : held_out)
-    for (const calibration::TestData& t : tests)
-      if (h.source == t.source)
-        throw std::runtime_error("'" + h.source + "' is both fitted and held out");
+  fit.progress = progress_printer();
+  const std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
+  const std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
+  refuse_shared_runs(tests, held_out);
   const auto start = std::chrono::steady_clock::now();
   calibration::CalibrationResult result = calibration::calibrate(tests, fit);
   calibration::predict(held_out, fit, result);
@@ -64,6 +114,13 @@ int calibrate_command(const std::vector<std::string>& run_paths,
 }
 
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options) {
+  calibrate
+      .add_option("--model", options.model,
+                  "acst: the ACST model's staged fit; network: the contact-network model "
+                  "(docs/network-model.md; its runs need Z, Lambda and a_t in /analysis/sff; "
+                  "it reads --starts, --seed, --threads, --hold-out, -v)")
+      ->check(CLI::IsMember({"acst", "network"}))
+      ->capture_default_str();
   calibrate
       .add_option("--threads", options.threads,
                   "threads over tests (the result does not depend on it); 0: OMP_NUM_THREADS, "

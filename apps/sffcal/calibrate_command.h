@@ -1,5 +1,6 @@
 // The calibrate subcommand: staged and joint Ceres fits of the ACST model to DEM run files
-// (docs/calibration.md).
+// (docs/calibration.md), or the two-stage fit of the contact-network model (--model network,
+// docs/network-model.md).
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@ class App;
 namespace sffcal {
 
 struct CalibrateCommandOptions {
+  std::string model = "acst";    ///< acst | network
   std::string output_folder;     ///< parameters.json, <test>_curves.csv, summary.md, ...
   std::string stages = "all";    ///< all | csl | elastic | fabric | plastic | joint
   int starts = 3;                ///< starts of the plastic and joint stages
@@ -30,12 +32,16 @@ struct CalibrateCommandOptions {
   std::vector<std::string> ranges;
 };
 
-/// Adds --threads, --hold-out and --range to the calibrate subcommand.
+/// The options that only the ACST fit reads: refused with --model network.
+inline const char* const kAcstOnlyOptions[] = {"--stages", "--loss", "--points",
+                                               "--max-strain-step", "--range"};
+
+/// Adds --model, --threads, --hold-out and --range to the calibrate subcommand.
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options);
 
-/// Reads the run files (each needs /analysis/sff), calibrates (printing a progress line per stage
-/// and per Ceres iteration, with the elapsed time), writes the outputs and prints the summary.
-/// Returns the exit status (errors are printed, never thrown).
+/// Reads the run files (each needs /analysis/sff), calibrates the model options.model names
+/// (printing a progress line per stage, with the elapsed time), writes the outputs and prints the
+/// summary. Returns the exit status; throws std::exception with the reason for bad input.
 int calibrate_command(const std::vector<std::string>& run_paths,
                       const CalibrateCommandOptions& options, const std::string& command_line);
 

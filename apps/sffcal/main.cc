@@ -121,7 +121,9 @@ int main(int argc, char** argv) {
   CLI::App* calibrate = app.add_subcommand(
       "calibrate", "Fit the ACST model to DEM run files: critical state line, elasticity, fabric "
                    "evolution, hardening/dilatancy, then all tests jointly (Ceres); also the SFF "
-                   "strength relation (docs/calibration.md; plot with scripts/plot_calibration.py)");
+                   "strength relation (docs/calibration.md; plot with scripts/plot_calibration.py). "
+                   "--model network fits the contact-network model instead "
+                   "(docs/network-model.md; plot with scripts/plot_network.py)");
   calibrate->add_option("runs", calibrate_runs, "run files with an /analysis/sff table")
       ->required()
       ->check(CLI::ExistingFile);
@@ -193,6 +195,11 @@ int main(int argc, char** argv) {
     if (calibrate->parsed()) {
       std::string command_line;
       for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
+      if (calibrate_options.model == "network")
+        for (const char* name : sffcal::kAcstOnlyOptions)
+          if (calibrate->count(name) > 0)
+            throw std::invalid_argument(std::string(name) +
+                                        " applies to the ACST fit only, not to --model network");
       sffcal::check_output_folder(calibrate_options.output_folder);
       return sffcal::calibrate_command(calibrate_runs, calibrate_options, command_line);
     }

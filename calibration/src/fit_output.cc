@@ -1,7 +1,5 @@
 // Outputs of the calibration: parameter file, curves, summary (docs/calibration.md).
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -10,41 +8,16 @@
 #include <stdexcept>
 
 #include "calibration/fit.h"
+#include "output_format.h"
 
 namespace calibration {
 
 namespace {
 
 using Json = nlohmann::json;
-
-std::string number(double x, int digits = 4) {
-  if (!std::isfinite(x)) return "nan";
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
-}
-
-std::string utc_now() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buffer;
-}
-
-void write_csv(const std::filesystem::path& path, const std::string& header,
-               const std::vector<std::vector<double>>& columns) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
-  out << header << '\n' << std::setprecision(10);
-  const std::size_t n = columns.empty() ? 0 : columns[0].size();
-  for (std::size_t k = 0; k < n; ++k) {
-    for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c][k];
-    out << '\n';
-  }
-  if (!out) throw std::runtime_error("write failed: '" + path.string() + "'");
-}
+using output::number;
+using output::utc_now;
+using output::write_csv;
 
 void errors_table(std::ostringstream& s, const std::vector<TestErrors>& errors) {
   s << "| test | path | rows | snapshots | RMS q/p | max abs q/p | RMS eps_v | RMS e | "

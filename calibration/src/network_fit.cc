@@ -3,9 +3,12 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -236,11 +239,16 @@ struct PathObjective {
   FitOptions options;
   bool predicted = false;
 
-  int num_residuals() const {
-    int n = 0;
-    for (std::size_t k = 1; k < nodes.size(); ++k)
-      n += (nodes[k].row >= 0 ? 2 : 0) + (nodes[k].snapshot >= 0 ? 5 : 0);
-    return n;
+  int num_residuals() const { return static_cast<int>(kinds().size()); }
+
+  // The kind of each residual in evaluate's order (ObjectiveValue::kinds).
+  std::vector<int> kinds() const {
+    std::vector<int> k;
+    for (std::size_t i = 1; i < nodes.size(); ++i) {
+      if (nodes[i].row >= 0) k.insert(k.end(), {0, 1});
+      if (nodes[i].snapshot >= 0) k.insert(k.end(), {2, 3, 4, 5, 6});
+    }
+    return k;
   }
 
   template <typename T>
@@ -500,11 +508,12 @@ ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>
   validate(par);
   PathObjective objective{&test, path_nodes(test), initial_state(test), options, predicted};
   const int n = objective.num_residuals();
+  ObjectiveValue value;
+  value.kinds = objective.kinds();
   ceres::AutoDiffCostFunction<TestCost, ceres::DYNAMIC, kNumParameters> cost(
       new TestCost{std::move(objective)}, n);
   const std::array<double, kNumParameters> x = to_array(par);
   const double* parameters[] = {x.data()};
-  ObjectiveValue value;
   value.residuals.resize(n);
   Eigen::Matrix<double, Eigen::Dynamic, kNumParameters, Eigen::RowMajor> jacobian(n, kNumParameters);
   double* jacobians[] = {jacobian.data()};
@@ -523,13 +532,28 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
   int k = 0;
   for (const Parameters<double>& point : starting_points(start, options.starts, options.seed)) {
     std::array<double, kNumParameters> x = to_array(point);
+    auto report = [&](const char* stage, const ceres::Solver::Summary& summary) {
+      if (!options.progress) return;
+      char line[256];
+      std::snprintf(line, sizeof line, "start %d of %d, %s: cost %.6g -> %.6g, %zu iterations",
+                    k + 1, options.starts, stage, summary.initial_cost, summary.final_cost,
+                    summary.iterations.empty() ? 0 : summary.iterations.size() - 1);
+      if (summary.termination_type == ceres::FAILURE && summary.iterations.empty())
+        std::snprintf(line, sizeof line, "start %d of %d, %s: failed", k + 1, options.starts,
+                      stage);
+      options.progress(summary.termination_type == ceres::FAILURE
+                           ? std::string(line) + " (" + summary.message + ")"
+                           : std::string(line));
+    };
     const ceres::Solver::Summary along = solve(tests, false, options, x);
+    report("along the DEM strain paths", along);
     if (along.termination_type == ceres::FAILURE) {
       best.start_costs.push_back(std::numeric_limits<double>::quiet_NaN());
       ++k;
       continue;
     }
     const ceres::Solver::Summary predicted = solve(tests, true, options, x);
+    report("on the predicted paths", predicted);
     const bool usable = predicted.IsSolutionUsable() && std::isfinite(predicted.final_cost);
     if (usable && (!found || predicted.final_cost < best.final_cost)) {
       found = true;
@@ -547,7 +571,58 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
     ++k;
   }
   if (!found) throw std::runtime_error("contact-network fit: no start gave a usable solution");
+  best.errors = standard_errors(tests, best.parameters, options);
   return best;
+}
+
+StandardErrors standard_errors(const std::vector<TestData>& tests, const Parameters<double>& par,
+                               const FitOptions& options) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  StandardErrors result;
+  result.independent.fill(kNaN);
+  result.robust.fill(kNaN);
+  // The parameters inside their bounds (a fit that stopped at a bound held it there).
+  const auto x = to_array(par), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
+  std::vector<int> free;
+  for (int i = 0; i < kNumParameters; ++i)
+    if (x[i] > lo[i] + 1e-9 * (hi[i] - lo[i]) && x[i] < hi[i] - 1e-9 * (hi[i] - lo[i]))
+      free.push_back(i);
+  // Residuals and Jacobian rows regrouped into series: per test, one per residual kind, each in
+  // strain order.
+  std::vector<double> residuals, jacobian;
+  std::vector<int> series_lengths;
+  for (const TestData& t : tests) {
+    const ObjectiveValue v = evaluate_objective(t, par, true, options);
+    if (!v.usable) return result;
+    for (int kind = 0; kind < 7; ++kind) {
+      int length = 0;
+      for (int r = 0; r < static_cast<int>(v.kinds.size()); ++r) {
+        if (v.kinds[r] != kind) continue;
+        residuals.push_back(v.residuals[r]);
+        for (int i : free) jacobian.push_back(v.jacobian(r, i));
+        ++length;
+      }
+      if (length > 0) series_lengths.push_back(length);
+    }
+  }
+  const int k = static_cast<int>(free.size()), n = static_cast<int>(residuals.size());
+  if (k == 0 || n <= k) return result;
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+      J(jacobian.data(), n, k);
+  const Eigen::Map<const Eigen::VectorXd> r(residuals.data(), n);
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(J.transpose() * J);
+  if (!lu.isInvertible()) return result;
+  const Eigen::MatrixXd covariance = r.squaredNorm() / (n - k) * lu.inverse();
+  std::vector<double> robust;
+  if (!autocorrelation_robust_standard_errors(jacobian.data(), k, k, residuals.data(),
+                                              series_lengths, robust, &result.mean_bandwidth))
+    return result;
+  for (int j = 0; j < k; ++j) {
+    result.independent[free[j]] = std::sqrt(covariance(j, j));
+    result.robust[free[j]] = robust[j];
+  }
+  result.estimated = true;
+  return result;
 }
 
 }  // namespace calibration::network

@@ -270,6 +270,70 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
   }
 }
 
+// Noise of standard deviation `size` in residual units (FitOptions' scales) on every observation
+// of a test: i.i.d., so the independent standard errors are the right ones for it.
+TestData with_noise(TestData t, double size, std::mt19937_64& random) {
+  std::normal_distribution<double> normal(0.0, size);
+  const FitOptions scales;
+  for (std::size_t r = 1; r < t.eta.size(); ++r) {
+    t.eta[r] += scales.eta_scale * normal(random);
+    t.volumetric_strain[r] += scales.volumetric_scale * normal(random);
+  }
+  for (std::size_t m = 1; m < t.a_c.size(); ++m) {
+    t.coordination[m] += scales.coordination_scale * normal(random);
+    t.lambda[m] *= 1.0 + scales.lambda_scale * normal(random);
+    t.a_c[m] += scales.anisotropy_scale * normal(random);
+    t.a_n[m] += scales.anisotropy_scale * normal(random);
+    t.a_t[m] += scales.tangential_scale * normal(random);
+  }
+  return t;
+}
+
+TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
+  // Refits to independent noise realisations of the same two synthetic tests: the spread of their
+  // estimates is what the standard errors claim. With 12 refits a sample standard deviation is
+  // within about 20 % (one sigma) of the true one, so each ratio must lie within [0.5, 2] and
+  // their geometric mean within [0.8, 1.25]. k_t = 40: the tangential anisotropy relaxes over a
+  // few snapshots (at the usual 200 it is there by the first, and k_t is not identified).
+  Parameters<double> truth = plausible();
+  truth.k_t = 40.0;
+  const std::vector<TestData> clean = {
+      synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
+      synthetic_test(truth, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+  constexpr int kRefits = 12;
+  constexpr double kNoise = 0.3;
+  std::mt19937_64 random(20261203);
+  std::vector<std::array<double, kNumParameters>> estimates;
+  std::array<double, kNumParameters> mean_error{}, mean_robust{};
+  for (int k = 0; k < kRefits; ++k) {
+    std::vector<TestData> noisy;
+    for (const TestData& t : clean) noisy.push_back(with_noise(t, kNoise, random));
+    const FitResult result = fit(noisy, truth);
+    ASSERT_TRUE(result.errors.estimated);
+    estimates.push_back(to_array(result.parameters));
+    for (int i = 0; i < kNumParameters; ++i) {
+      mean_error[i] += result.errors.independent[i] / kRefits;
+      mean_robust[i] += result.errors.robust[i] / kRefits;
+    }
+  }
+  double log_sum = 0.0;
+  for (int i = 0; i < kNumParameters; ++i) {
+    double mean = 0.0, variance = 0.0;
+    for (const auto& x : estimates) mean += x[i] / kRefits;
+    for (const auto& x : estimates) variance += (x[i] - mean) * (x[i] - mean) / (kRefits - 1);
+    const double ratio = std::sqrt(variance) / mean_error[i];
+    std::printf("%-5s spread %.3e  standard error %.3e (robust %.3e)  ratio %.2f\n",
+                parameter_names()[i], std::sqrt(variance), mean_error[i], mean_robust[i], ratio);
+    EXPECT_GT(ratio, 0.5) << parameter_names()[i];
+    EXPECT_LT(ratio, 2.0) << parameter_names()[i];
+    log_sum += std::log(ratio);
+  }
+  const double geometric_mean = std::exp(log_sum / kNumParameters);
+  std::printf("geometric mean of spread / standard error: %.3f\n", geometric_mean);
+  EXPECT_GT(geometric_mean, 0.8);
+  EXPECT_LT(geometric_mean, 1.25);
+}
+
 TEST(NetworkModel, RatesTooFastForTheStepStopThePathWithAMessage) {
   // A network far above its critical coordination with the largest rate exponent: exp(10 xi) of
   // order 1e3 on k_f = 3000 would need about 1e5 RK4 substeps per 1 % of strain.

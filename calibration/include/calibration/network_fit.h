@@ -8,7 +8,9 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,6 +71,8 @@ struct FitOptions {
   /// the lowest cost of the second stage wins.
   int starts = 1;
   std::uint64_t seed = 1;
+  /// Called with a line after each stage of each start (for a progress display); may be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 /// Drives the model along the DEM's measured strain path (axial and volumetric strain, x and y
@@ -94,8 +98,23 @@ struct Errors {
 };
 Errors compare(const Curve& curve, const TestData& test);
 
+/// Standard errors of fitted parameters from the second stage's residuals r and Jacobian J at the
+/// solution, over the parameters inside their bounds (one at a bound is fixed: NaN here):
+/// `independent`, s^2 (J^T J)^-1 with s^2 = |r|^2 / (n - k), as if the residuals were
+/// independent; `robust`, the sandwich of calibration::autocorrelation_robust_standard_errors
+/// (fit.h) with one series per test and residual kind (eta; epsilon_v or p; Z; Lambda; a_c; a_n;
+/// a_t), which allows for residuals correlated along each curve, as the DEM's are.
+struct StandardErrors {
+  std::array<double, kNumParameters> independent, robust;
+  double mean_bandwidth = 0.0;  ///< of the robust form's series
+  bool estimated = false;       ///< false: J^T J singular or too few residuals (all NaN)
+};
+StandardErrors standard_errors(const std::vector<TestData>& tests, const Parameters<double>& par,
+                               const FitOptions& options = {});
+
 struct FitResult {
   Parameters<double> parameters;
+  StandardErrors errors;            ///< at the solution
   double initial_cost = 0.0, final_cost = 0.0;  ///< of the second stage
   int iterations = 0;
   bool converged = false;
@@ -113,6 +132,9 @@ Parameters<double> default_start();
 struct ObjectiveValue {
   Eigen::VectorXd residuals;
   Eigen::MatrixXd jacobian;  ///< residuals x kNumParameters
+  /// Each residual's kind: 0 eta, 1 the path's (lateral stress, epsilon_v or p/p0), 2 Z,
+  /// 3 Lambda, 4 a_c, 5 a_n, 6 a_t.
+  std::vector<int> kinds;
   bool usable = false;       ///< false where the path left the admissible states
 };
 ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>& par,
@@ -127,8 +149,25 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// Fits the parameters by Levenberg-Marquardt within the bounds in two stages: first to the
 /// tests' micro histories and stresses along their DEM strain paths (follow_strain_path), then
 /// to the micro histories, q/p and the volumetric strain (drained) or p (undrained) on the paths
-/// the model predicts (predict). Residuals and their scales: FitOptions.
+/// the model predicts (predict). Residuals and their scales: FitOptions. Fills the standard errors
+/// at the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
+
+/// Writes a fit's outputs into `folder` (created if missing; the caller sees that it holds no
+/// earlier outputs) and returns the summary (Markdown):
+/// - parameters.json: the parameter file (read_parameters_json) with the fit's record: program,
+///   version, date, command line, inputs, starts and their costs, residual scales, standard errors
+///   and each test's errors;
+/// - <test>_network.csv per test: the prediction on its own loading path at the DEM's rows and
+///   snapshots (axial_strain, volumetric_strain, void_ratio, p [Pa], q [Pa], eta, coordination,
+///   lambda, a_c, a_n, a_t, dem_row, dem_snapshot: which DEM row or snapshot a node is, -1 none);
+/// - summary.md: the per-test errors (along the DEM strain path and predicted; fitted and held
+///   back) and the parameters with their standard errors.
+/// Throws std::runtime_error for two tests of one name or a file that cannot be written.
+std::string write_fit_outputs(const std::string& folder, const std::vector<TestData>& fitted,
+                              const std::vector<TestData>& held_back, const FitResult& result,
+                              const FitOptions& options, const std::string& program_version,
+                              const std::string& command_line);
 
 }  // namespace calibration::network

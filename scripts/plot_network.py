@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Plots the contact-network model's predictions (network_fit --out DIR) against the DEM:
+"""Plots the contact-network model's predictions (`sffcal calibrate --model network -o DIR`, or
+bench/calibration/network_fit --out DIR) against the DEM:
 q/p, volumetric strain, Z, Lambda, a_c, a_n, a_t against axial strain. A test is a committed
 paper-size CSV pair by name (bench/reference/NAME_series.csv, NAME_sff.csv) or a run file (.h5).
 
@@ -14,7 +15,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference")
+REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench", "reference")
 
 
 def read(path):
