@@ -4,7 +4,8 @@
 usage: bench/calibration/seed_spread.py OUT [--markdown FILE]
 
 OUT is the folder of bench/calibration/seed_spread.sh: OUT/seed<S>/<specimen>.h5 (the runs) and
-OUT/seed<S>/fit/parameters.json (one calibration per seed). Prints, as Markdown:
+OUT/seed<S>/fit/parameters.json (one calibration per seed: ACST, or the contact-network model of
+`sffcal calibrate --model network`). Prints, as Markdown:
 - per fitted parameter: the mean over the seeds' fits, the standard deviation of the refits, the
   root-mean-square of the standard errors the fits reported (robust to correlated residuals, and
   as if the residuals were independent), and the ratios;
@@ -38,17 +39,30 @@ def main():
     out = [f"Fits: {', '.join(names)} ({len(fits)} seeds).", "",
            "| parameter | mean of the fits | SD of the refits | RMS SE (robust) | SD / SE | "
            "RMS SE (if independent) | SD / SE |", "|---|---|---|---|---|---|---|"]
-    entries = dict(fits[0]["parameters"])
-    entries["a_cs"] = fits[0]["fabric_normalisation"]["a_cs"]
-    for name in entries:
-        def entry(fit):
-            return fit["fabric_normalisation"]["a_cs"] if name == "a_cs" else fit["parameters"][name]
-        if any(entry(f).get("fixed", False) for f in fits):
+    network = fits[0].get("model") == "contact_network"
+
+    def estimate(fit, name):
+        """(value, robust SE, independent SE, at a bound) of a parameter in one fit; SEs None if
+        not estimated."""
+        if network:  # standard errors in the fit's record, null at a bound
+            robust = fit["fit"]["standard_errors"].get(name)
+            return (fit["parameters"][name]["value"], robust,
+                    fit["fit"]["standard_errors_independent"].get(name), robust is None)
+        e = fit["fabric_normalisation"]["a_cs"] if name == "a_cs" else fit["parameters"][name]
+        return (e["value"], e.get("standard_error"),
+                fit["fit"].get("standard_errors_independent", {}).get(name), bool(e.get("at_bound")))
+
+    names_in_fit = list(fits[0]["parameters"]) + ([] if network else ["a_cs"])
+    for name in names_in_fit:
+        if not network and any(
+                (fits[0]["fabric_normalisation"]["a_cs"] if name == "a_cs" else f["parameters"][name])
+                .get("fixed", False) for f in fits):
             continue
-        values = np.array([entry(f)["value"] for f in fits])
-        errors = [entry(f).get("standard_error") for f in fits]
-        at_bound = sum(bool(entry(f).get("at_bound")) for f in fits)
-        independent = [f["fit"].get("standard_errors_independent", {}).get(name) for f in fits]
+        rows = [estimate(f, name) for f in fits]
+        values = np.array([r[0] for r in rows])
+        errors = [r[1] for r in rows]
+        independent = [r[2] for r in rows]
+        at_bound = sum(r[3] for r in rows)
         sd = float(np.std(values, ddof=1))
 
         def rms(errors):
@@ -71,7 +85,8 @@ def main():
         if len(runs) < 2:
             continue
         noise = seeds_noise(runs)
-        errors = [e for f in fits for e in f.get("errors", []) if e["test"] == spec]
+        errors = [e.get("predicted", e) for f in fits for e in f.get("errors", [])
+                  if e["test"] == spec]
         eta = np.mean([e["rms_eta"] for e in errors]) if errors else float("nan")
         ev = np.mean([e["rms_volumetric"] for e in errors]) if errors else float("nan")
         out.append(f"| {spec} | {noise['eta']:.3f} | {eta:.3f} | {noise['volumetric_strain']:.4f} | "

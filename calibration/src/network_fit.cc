@@ -469,6 +469,9 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
   solver.max_num_iterations = options.max_iterations;
   solver.num_threads = options.threads;
   solver.function_tolerance = 1e-8;
+  // No Ceres log lines on stderr (e.g. a trial step whose path leaves the admissible states is
+  // an ordinary rejected step here); progress comes through FitOptions::progress.
+  solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   // A start whose paths leave the admissible states is dropped here, quietly: Ceres would log
   // an error for it.

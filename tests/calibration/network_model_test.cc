@@ -334,6 +334,69 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
   EXPECT_LT(geometric_mean, 1.25);
 }
 
+// The test with `factor` - 1 rows inserted between each two of its rows (the DEM columns linear
+// between them); its snapshots unchanged.
+TestData refined(const TestData& t, int factor) {
+  TestData r = t;
+  r.axial_strain.clear(), r.volumetric_strain.clear(), r.eta.clear(), r.void_ratio.clear();
+  r.p.clear();
+  for (std::size_t k = 0; k + 1 < t.axial_strain.size(); ++k)
+    for (int j = 0; j < factor; ++j) {
+      const double w = static_cast<double>(j) / factor;
+      auto at = [&](const std::vector<double>& x) { return (1.0 - w) * x[k] + w * x[k + 1]; };
+      r.axial_strain.push_back(at(t.axial_strain));
+      r.volumetric_strain.push_back(at(t.volumetric_strain));
+      r.eta.push_back(at(t.eta));
+      r.void_ratio.push_back(at(t.void_ratio));
+      r.p.push_back(at(t.p));
+    }
+  r.axial_strain.push_back(t.axial_strain.back());
+  r.volumetric_strain.push_back(t.volumetric_strain.back());
+  r.eta.push_back(t.eta.back());
+  r.void_ratio.push_back(t.void_ratio.back());
+  r.p.push_back(t.p.back());
+  return r;
+}
+
+// q/p at the test's own rows, from a curve of the test refined by `factor`.
+std::vector<double> eta_at_rows(const Curve& c, int factor) {
+  std::vector<double> eta;
+  for (std::size_t k = 0; k < c.axial_strain.size(); ++k)
+    if (c.row[k] >= 0 && c.row[k] % factor == 0) eta.push_back(c.eta[k]);
+  return eta;
+}
+
+TEST(NetworkModel, TheFitsPathsAreWithin1e3OfConvergedPaths) {
+  // Issue 19, point 3: the paths the fit evaluates (at the DEM's rows, 0.002 of axial strain apart
+  // at paper size, RK4 substeps of size 0.05) against converged ones (8 times finer rows, substeps
+  // of 0.005), with the paper-size fit's parameters on the four paper-size runs: q/p within 1e-3
+  // on the predicted drained paths and along the DEM's strain paths.
+  const std::string reference = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
+  const Parameters<double> par = read_parameters_json(reference + "network_paper_params.json");
+  FitOptions converged;
+  converged.substep_size = 0.005;
+  converged.max_substeps = 200000;
+  constexpr int kFactor = 8;
+  for (const char* name : {"dense_100kPa", "dense_300kPa", "loose_100kPa", "loose_200kPa"}) {
+    const TestData t = read_csv_pair(reference + name + "_series.csv",
+                                     reference + name + "_sff.csv", name, std::tan(M_PI / 6.0));
+    const TestData fine = refined(t, kFactor);
+    for (bool predicted : {true, false}) {
+      const Curve coarse = predicted ? predict(par, t) : follow_strain_path(par, t);
+      const Curve reference_curve =
+          predicted ? predict(par, fine, converged) : follow_strain_path(par, fine, converged);
+      ASSERT_TRUE(coarse.complete && reference_curve.complete) << name;
+      const std::vector<double> a = eta_at_rows(coarse, 1), b = eta_at_rows(reference_curve, kFactor);
+      ASSERT_EQ(a.size(), b.size()) << name;
+      double largest = 0.0;
+      for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, std::abs(a[k] - b[k]));
+      std::printf("%-13s %-22s largest |q/p - converged| %.2e\n", name,
+                  predicted ? "predicted path" : "along the strain path", largest);
+      EXPECT_LT(largest, 1e-3) << name << (predicted ? " predicted" : " strain path");
+    }
+  }
+}
+
 TEST(NetworkModel, RatesTooFastForTheStepStopThePathWithAMessage) {
   // A network far above its critical coordination with the largest rate exponent: exp(10 xi) of
   // order 1e3 on k_f = 3000 would need about 1e5 RK4 substeps per 1 % of strain.
