@@ -3,7 +3,9 @@
 // committed reduced CSV pair by name (bench/reference/<name>_series.csv and <name>_sff.csv) or a
 // run file (.h5) analysed by `sffcal sff`.
 //
-// usage: network_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] --out DIR
+// usage: network_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] [--hold NAME]...
+//                    --out DIR
+//   (--hold NAME: the parameter held at its start value, e.g. c_t at 1: no Lode dependence)
 //   e.g. build/bench/network_fit dense_100kPa loose_200kPa --hold-out dense_300kPa --out out/n1
 // Writes what `sffcal calibrate --model network` writes (network::write_fit_outputs: the
 // parameter file with the fit's record, <name>_network.csv per test, summary.md) into DIR, which
@@ -37,6 +39,8 @@ int main(int argc, char** argv) {
         options.threads = std::atoi(argv[++k]);
       } else if (a == "--starts" && k + 1 < argc) {
         options.starts = std::atoi(argv[++k]);
+      } else if (a == "--hold" && k + 1 < argc) {
+        options.held.push_back(argv[++k]);
       } else if (a == "--out" && k + 1 < argc) {
         out_dir = argv[++k];
       } else {
@@ -45,7 +49,7 @@ int main(int argc, char** argv) {
     }
     if (fitted.empty() || out_dir.empty()) {
       std::fprintf(stderr, "usage: network_fit FITTED... [--hold-out HELD...] "
-                           "[--threads N] [--starts N] --out DIR\n");
+                           "[--threads N] [--starts N] [--hold NAME]... --out DIR\n");
       return 2;
     }
     if (std::filesystem::exists(out_dir))

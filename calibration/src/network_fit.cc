@@ -442,15 +442,36 @@ Parameters<double> default_start() {
   p.f_cs = 1.05, p.f_z = 1.0, p.k_f = 100.0;
   p.t_cs = 0.085, p.t_z = 0.1, p.k_t = 200.0;
   p.d_z = 3.0, p.d_a = 2.0, p.n_r = 0.0, p.n_z = 0.0;
+  p.c_t = 1.0;
   return p;
 }
 
 namespace {
 
+// The parameters held at their start: those the options name, and those the tests cannot
+// determine (c_t, the Lode factor of Eq. N2b, without an extension test). Sorted, each once.
+std::vector<int> held_parameters(const std::vector<TestData>& tests, const FitOptions& options) {
+  std::vector<int> held;
+  for (const std::string& name : options.held) {
+    const auto& names = parameter_names();
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end())
+      throw std::invalid_argument("contact-network fit: no parameter '" + name + "' to hold");
+    held.push_back(static_cast<int>(at - names.begin()));
+  }
+  if (std::none_of(tests.begin(), tests.end(),
+                   [](const TestData& t) { return axial_direction(t.path) < 0.0; }))
+    held.push_back(kNumParameters - 1);
+  std::sort(held.begin(), held.end());
+  held.erase(std::unique(held.begin(), held.end()), held.end());
+  return held;
+}
+
 // One Levenberg-Marquardt solve of the objective (along the DEM's strain paths or on the
 // predicted ones) from x, within the bounds; x holds the result.
 ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
                              const FitOptions& options, std::array<double, kNumParameters>& x) {
+  const std::vector<int> held = held_parameters(tests, options);
   ceres::Problem problem;
   for (const TestData& t : tests) {
     PathObjective objective{&t, path_nodes(t), initial_state(t), options, predicted};
@@ -464,6 +485,7 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
     problem.SetParameterLowerBound(x.data(), i, lo[i]);
     problem.SetParameterUpperBound(x.data(), i, hi[i]);
   }
+  if (!held.empty()) problem.SetManifold(x.data(), new ceres::SubsetManifold(kNumParameters, held));
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = options.max_iterations;
@@ -533,8 +555,11 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
   FitResult best;
   bool found = false;
   int k = 0;
+  const std::vector<int> held = held_parameters(tests, options);
+  const auto start_values = to_array(start);
   for (const Parameters<double>& point : starting_points(start, options.starts, options.seed)) {
     std::array<double, kNumParameters> x = to_array(point);
+    for (int i : held) x[i] = start_values[i];
     auto report = [&](const char* stage, const ceres::Solver::Summary& summary) {
       if (!options.progress) return;
       char line[256];
@@ -586,9 +611,11 @@ StandardErrors standard_errors(const std::vector<TestData>& tests, const Paramet
   result.robust.fill(kNaN);
   // The parameters inside their bounds (a fit that stopped at a bound held it there).
   const auto x = to_array(par), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
+  const std::vector<int> held = held_parameters(tests, options);
   std::vector<int> free;
   for (int i = 0; i < kNumParameters; ++i)
-    if (x[i] > lo[i] + 1e-9 * (hi[i] - lo[i]) && x[i] < hi[i] - 1e-9 * (hi[i] - lo[i]))
+    if (x[i] > lo[i] + 1e-9 * (hi[i] - lo[i]) && x[i] < hi[i] - 1e-9 * (hi[i] - lo[i]) &&
+        std::find(held.begin(), held.end(), i) == held.end())
       free.push_back(i);
   // Residuals and Jacobian rows regrouped into series: per test, one per residual kind, each in
   // strain order.

@@ -169,6 +169,10 @@ Parameters<double> read_parameters_json(const std::string& path, double* youngs_
   std::array<double, kNumParameters> x;
   for (int i = 0; i < kNumParameters; ++i) {
     const std::string name = parameter_names()[i], key = "parameters." + name;
+    if (i >= kNumFirstVersionParameters && !params.contains(name)) {
+      x[i] = kCtIfAbsent;  // a file of the first version: no Lode dependence
+      continue;
+    }
     if (!params.contains(name) || !params[name].is_object() || !params[name].contains("value"))
       fail(path, "missing key '" + key + ".value'");
     if (!params[name]["value"].is_number()) fail(path, "key '" + key + ".value' must be a number");

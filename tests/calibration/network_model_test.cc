@@ -113,6 +113,32 @@ TEST(NetworkModel, TheCriticalStateIsStationaryUnderIsochoricShear) {
   EXPECT_GT(largest_change(rate(p, s, isochoric_compression(1.0))), 1e-3);
 }
 
+TEST(NetworkModel, TheLodeFactorIsOneInCompressionAndCtInExtension) {
+  // Eq. N2b on the three classical directions: compression cos 3 theta = 1, extension -1, pure
+  // shear 0 (g = 2c / (1 + c)); and it is scale free.
+  const double c = 0.6;
+  Tensor<double> shear = Tensor<double>::Zero();
+  shear(0, 0) = 1.0, shear(1, 1) = -1.0;
+  const Tensor<double> compression = isochoric_compression(2.0), extension = -compression;
+  auto g = [&](const Tensor<double>& d) { return lode_factor(c, d, (d.array() * d.array()).sum()); };
+  EXPECT_NEAR(g(compression), 1.0, 1e-14);
+  EXPECT_NEAR(g(extension), c, 1e-14);
+  EXPECT_NEAR(g(shear), 2.0 * c / (1.0 + c), 1e-14);
+  EXPECT_NEAR(g(7.0 * extension), c, 1e-14);
+  EXPECT_EQ(g(Tensor<double>::Zero()), 1.0);
+  // The critical state of extension: each anisotropy at its critical norm along -z, the
+  // tangential one at c_t t_cs; there isochoric extension changes nothing.
+  Parameters<double> p = plausible();
+  p.c_t = c;
+  State<double> s = critical_state(p, 1e-3);
+  s.fabric = -s.fabric, s.normal = -s.normal;
+  s.tangential = -c * s.tangential;
+  EXPECT_LT(largest_change(rate(p, s, isochoric_compression(-1.0))), 1e-12);
+  // With c_t = 1 the same state is off the critical state (F^t too large by 1/c).
+  p.c_t = 1.0;
+  EXPECT_GT(largest_change(rate(p, s, isochoric_compression(-1.0))), 1e-3);
+}
+
 TEST(NetworkModel, AnAnisotropyRelaxesExponentiallyInShearStrain) {
   // At Z = Z_c with no dilatancy (d_z = d_a = 0) isochoric shear leaves Z and Lambda alone, and
   // Eq. N2 integrates to a(eps_q) = a_cs + (a_0 - a_cs) exp(-k_a eps_q).
@@ -157,13 +183,13 @@ TEST(NetworkModel, RatesAreFrameIndifferent) {
 
 // A synthetic test: the model's own prediction from an initial state, with the DEM's columns.
 TestData synthetic_test(const Parameters<double>& p, const std::string& name, double e0,
-                        double z0, double lambda0, bool drained, int rows, double end_strain) {
+                        double z0, double lambda0, TestPath path, int rows, double end_strain) {
   TestData t;
   t.name = name;
   t.source = "synthetic";
-  t.path = drained ? TestPath::kDrainedCompression : TestPath::kUndrainedCompression;
+  t.path = path;
   for (int k = 0; k < rows; ++k) {
-    t.axial_strain.push_back(end_strain * k / (rows - 1));
+    t.axial_strain.push_back(axial_direction(path) * end_strain * k / (rows - 1));
     t.volumetric_strain.push_back(0.0);
     t.eta.push_back(0.0);
     t.void_ratio.push_back(e0);
@@ -201,6 +227,13 @@ TestData synthetic_test(const Parameters<double>& p, const std::string& name, do
   return t;
 }
 
+TestData synthetic_test(const Parameters<double>& p, const std::string& name, double e0,
+                        double z0, double lambda0, bool drained, int rows, double end_strain) {
+  return synthetic_test(p, name, e0, z0, lambda0,
+                        drained ? TestPath::kDrainedCompression : TestPath::kUndrainedCompression,
+                        rows, end_strain);
+}
+
 TEST(NetworkModel, TheDrainedPredictionHoldsTheLateralStressAndDilatesWhenOverCoordinated) {
   const Parameters<double> p = plausible();
   const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 41, 0.2);
@@ -218,15 +251,27 @@ TEST(NetworkModel, TheDrainedPredictionHoldsTheLateralStressAndDilatesWhenOverCo
 TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
   // Past the peak, on the predicted drained path the derivatives come through the implicit
   // function theorem at each increment.
-  const Parameters<double> p = plausible();
+  // In drained extension the Lode factor c_t is seen too; in compression it is not (g = 1), and
+  // its column vanishes (to rounding).
+  Parameters<double> p = plausible();
+  p.c_t = 0.7;
   const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 25, 0.12);
   const TestData undrained = synthetic_test(p, "loose_undrained", 0.73, 4.4, 7e-4, false, 25, 0.08);
-  for (const TestData* t : {&dense, &undrained}) {
+  const TestData extension =
+      synthetic_test(p, "dense_extension", 0.58, 6.7, 4.5e-4, TestPath::kDrainedExtension, 25, 0.12);
+  for (const TestData* t : {&dense, &undrained, &extension}) {
     for (bool predicted : {false, true}) {
       const ObjectiveValue value = evaluate_objective(*t, p, predicted);
       ASSERT_TRUE(value.usable);
       const auto x = to_array(p);
+      const int c_t = kNumParameters - 1;
+      if (t == &extension)
+        EXPECT_GT(value.jacobian.col(c_t).norm(), 1.0) << "extension sees c_t";
+      else
+        EXPECT_LT(value.jacobian.col(c_t).norm(), 1e-10)  // cos 3 theta = 1 to rounding
+            << t->name << ": compression sees no c_t";
       for (int i = 0; i < kNumParameters; ++i) {
+        if (i == c_t && t != &extension) continue;  // checked above: zero
         const double h = 1e-6 * std::max(std::abs(x[i]), 1.0);
         auto shifted = x;
         shifted[i] = x[i] + h;
@@ -251,8 +296,9 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
       synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 31, 0.2),
       synthetic_test(truth, "loose", 0.73, 4.3, 7e-4, true, 31, 0.2)};
   auto start = to_array(truth);
-  const double factors[] = {1.2, 0.95, 1.2, 0.8, 1.1, 0.95, 1.2, 1.15, 1.05,
-                            0.9, 1.1,  1.05, 0.9, 1.2, 1.1, 1.2, 0.9, 1.1};
+  // c_t (the last) is held without an extension test, and compression does not see it.
+  const double factors[kNumParameters] = {1.2, 0.95, 1.2,  0.8, 1.1, 0.95, 1.2, 1.15, 1.05, 0.9,
+                                          1.1, 1.05, 0.9, 1.2, 1.1, 1.2,  0.9, 1.1,  1.0};
   for (int i = 0; i < kNumParameters; ++i) start[i] *= factors[i];
   FitOptions options;
   options.max_iterations = 300;
@@ -310,6 +356,9 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     for (const TestData& t : clean) noisy.push_back(with_noise(t, kNoise, random));
     const FitResult result = fit(noisy, truth);
     ASSERT_TRUE(result.errors.estimated);
+    // c_t, held without an extension test, has none.
+    EXPECT_TRUE(std::isnan(result.errors.independent[kNumParameters - 1]));
+    EXPECT_EQ(result.parameters.c_t, truth.c_t);
     estimates.push_back(to_array(result.parameters));
     for (int i = 0; i < kNumParameters; ++i) {
       mean_error[i] += result.errors.independent[i] / kRefits;
@@ -317,7 +366,8 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     }
   }
   double log_sum = 0.0;
-  for (int i = 0; i < kNumParameters; ++i) {
+  const int estimated = kNumParameters - 1;  // all but c_t
+  for (int i = 0; i < estimated; ++i) {
     double mean = 0.0, variance = 0.0;
     for (const auto& x : estimates) mean += x[i] / kRefits;
     for (const auto& x : estimates) variance += (x[i] - mean) * (x[i] - mean) / (kRefits - 1);
@@ -328,7 +378,7 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     EXPECT_LT(ratio, 2.0) << parameter_names()[i];
     log_sum += std::log(ratio);
   }
-  const double geometric_mean = std::exp(log_sum / kNumParameters);
+  const double geometric_mean = std::exp(log_sum / estimated);
   std::printf("geometric mean of spread / standard error: %.3f\n", geometric_mean);
   EXPECT_GT(geometric_mean, 0.8);
   EXPECT_LT(geometric_mean, 1.25);
@@ -443,6 +493,19 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
             (i == 7 ? std::string("-1") : std::to_string(x[i])) + ", \"unit\": \"1\"}";
   expect_error(text + "}}", "k_a");  // out of range
   expect_error("{\"model\": ", "not valid JSON");
+  // A file of the first version (no c_t) reads with c_t = 1, no Lode dependence; a c_t out of its
+  // range is refused by name.
+  std::string first_version = R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8,
+                                  "unit": "Pa"}, "parameters": {)";
+  for (int i = 0; i < kNumFirstVersionParameters; ++i)
+    first_version += std::string(i ? ", " : "") + "\"" + parameter_names()[i] +
+                     "\": {\"value\": " + std::to_string(x[i]) + ", \"unit\": \"1\"}";
+  {
+    std::ofstream out(path);
+    out << first_version << "}}";
+  }
+  EXPECT_EQ(read_parameters_json(path).c_t, 1.0);
+  expect_error(first_version + R"(, "c_t": {"value": 5, "unit": "1"}}})", "c_t");
   std::remove(path.c_str());
 }
 

@@ -21,7 +21,7 @@
 static const double kP0 = 100e3; /* initial isotropic stress [Pa] */
 static const double kE0 = 0.574, kZ0 = 6.69;
 static const double kAc = -0.022, kAn = 0.040, kAt = -0.0015; /* triaxial parts t(.) */
-enum { kNumParameters = 18 };
+enum { kNumParameters = 19 }; /* PROPS(22..40) */
 
 /* x diag(-1, -1, 2) / 3 in the order 11, 22, 33, 12, 13, 23. */
 static void axisymmetric(double x, double* props) {
@@ -30,7 +30,7 @@ static void axisymmetric(double x, double* props) {
   props[3] = props[4] = props[5] = 0.0;
 }
 
-/* youngs_and_parameters: E then the 18 parameters (PROPS 21..39). */
+/* youngs_and_parameters: E then the 19 parameters (PROPS 21..40). */
 static Point make_point(const double* youngs_and_parameters, int ntens, int nprops) {
   Point pt;
   memset(&pt, 0, sizeof pt);
@@ -73,7 +73,7 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
     check(0, "the reference driver path is complete", 0.0);
     return;
   }
-  Point pt = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
+  Point pt = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
   /* A zero increment first: Lambda is set so that the SFF stress has the mean stress p0. */
   double stress[6], ddsdde[36];
   const double zero[6] = {0};
@@ -119,20 +119,34 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
         "the parameter file through SFFCAL_NETWORK_PARAMETERS gives the same path", 0.0);
 
   /* NTENS = 4 (plane strain / axisymmetric layout): the same axisymmetric path. */
-  Point four = make_point(youngs_and_parameters, 4, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
+  Point four = make_point(youngs_and_parameters, 4, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
   umat_drained_triaxial(&four, kP0, kAxialStrainEnd, kIncrements, q2, ev2);
   double four_error = 0.0;
   for (int n = 0; n < kIncrements; ++n) four_error = fmax(four_error, fabs(q2[n] - q[n]) / q[n]);
   check(four_error <= 1e-12, "NTENS = 4 gives the NTENS = 6 path, relative q difference",
         four_error);
 
+  /* PROPS(40), c_t: NPROPS = 39 stands for c_t = 1; another c_t changes an extension increment. */
+  const double extension[6] = {1e-3, 1e-3, 2e-3, 0, 0, 0}; /* tension positive: the axis unloads */
+  double s39[6], s40[6], s06[6];
+  Point p39 = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
+  Point p40 = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
+  p40.props[SFFCAL_UMAT_NETWORK_NPROPS_MAX - 1] = 1.0;
+  call_umat(&p39, extension, s39, ddsdde, 0);
+  call_umat(&p40, extension, s40, ddsdde, 0);
+  p40.props[SFFCAL_UMAT_NETWORK_NPROPS_MAX - 1] = 0.6;
+  call_umat(&p40, extension, s06, ddsdde, 0);
+  check(memcmp(s39, s40, sizeof s39) == 0 && fabs(s06[2] - s39[2]) > 1e-6 * kP0,
+        "NPROPS = 39 is c_t = 1; c_t = 0.6 in PROPS(40) changes an extension step, |dS33| [Pa]",
+        fabs(s06[2] - s39[2]));
+
   /* The name chooses the entry in any case; another name goes to ACST, which refuses these
    * PROPS (its parameters, PROPS(8..22), would be the anisotropies and E here). */
-  Point lower = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
+  Point lower = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
   lower.cmname = "contact_network_dense";
   umat_drained_triaxial(&lower, kP0, kAxialStrainEnd, kIncrements, q2, ev2);
   check(same_path(q, ev, q2, ev2), "a lower-case contact_network name: the same path", 0.0);
-  Point acst = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
+  Point acst = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
   acst.cmname = "SAND";
   const double dstran[6] = {0, 0, -1e-4, 0, 0, 0};
   const double pnewdt = call_umat(&acst, dstran, stress, ddsdde, 0);
@@ -144,7 +158,7 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
 /* DDSDDE against centred differences of STRESS in DSTRAN (engineering shear), after 2 % of axial
  * strain with a general increment. */
 static void ddsdde_matches_finite_differences(const double* youngs_and_parameters) {
-  Point pt = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
+  Point pt = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
   double q[20], ev[20];
   umat_drained_triaxial(&pt, kP0, 0.02, 20, q, ev);
   const double dstran[6] = {2e-4, 1e-4, -6e-4, 1.5e-4, -1e-4, 0.5e-4};
@@ -166,7 +180,7 @@ static double refused(const Point* pt, int* stress_unchanged) {
 
 static void failures_ask_for_a_smaller_increment(const double* youngs_and_parameters,
                                                  const char* parameter_file) {
-  const Point good = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
+  const Point good = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
   int unchanged = 0;
 
   Point bad = good; /* k_a (PROPS(29)) below its bound */

@@ -71,6 +71,9 @@ struct FitOptions {
   /// the lowest cost of the second stage wins.
   int starts = 1;
   std::uint64_t seed = 1;
+  /// Parameters held at their start values (parameter_names()), besides c_t without an extension
+  /// test, which is always held.
+  std::vector<std::string> held;
   /// Called with a line after each stage of each start (for a progress display); may be empty.
   std::function<void(const std::string&)> progress;
 };
@@ -99,7 +102,8 @@ struct Errors {
 Errors compare(const Curve& curve, const TestData& test);
 
 /// Standard errors of fitted parameters from the second stage's residuals r and Jacobian J at the
-/// solution, over the parameters inside their bounds (one at a bound is fixed: NaN here):
+/// solution, over the parameters inside their bounds and not held (one at a bound, or c_t without
+/// an extension test, which the fit holds: NaN here):
 /// `independent`, s^2 (J^T J)^-1 with s^2 = |r|^2 / (n - k), as if the residuals were
 /// independent; `robust`, the sandwich of calibration::autocorrelation_robust_standard_errors
 /// (fit.h) with one series per test and residual kind (eta; epsilon_v or p; Z; Lambda; a_c; a_n;
@@ -149,8 +153,9 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// Fits the parameters by Levenberg-Marquardt within the bounds in two stages: first to the
 /// tests' micro histories and stresses along their DEM strain paths (follow_strain_path), then
 /// to the micro histories, q/p and the volumetric strain (drained) or p (undrained) on the paths
-/// the model predicts (predict). Residuals and their scales: FitOptions. Fills the standard errors
-/// at the solution.
+/// the model predicts (predict). Residuals and their scales: FitOptions. Without an extension
+/// test c_t (the Lode factor) is held at its start value. Fills the standard errors at the
+/// solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 

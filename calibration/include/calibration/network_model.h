@@ -50,21 +50,28 @@ struct Parameters {
   T d_z = unset(), d_a = unset();  ///< dilatancy from coordination and fabric (N7)
   T n_r = unset();  ///< the anisotropies' rate exponent in the over-coordination (N3)
   T n_z = unset();  ///< the coordination's rate exponent in the over-coordination (N5)
+  /// The tangential anisotropy's target in triaxial extension over that in compression (the Lode
+  /// factor g of N2b); 1, no Lode dependence, in files written before it.
+  T c_t = unset();
 };
 
-inline constexpr int kNumParameters = 18;
+inline constexpr int kNumParameters = 19;
+/// The parameters added after the first version, at the end of the order: their value in a
+/// parameter file (or UMAT PROPS) that does not give them.
+inline constexpr int kNumFirstVersionParameters = 18;
+inline constexpr double kCtIfAbsent = 1.0;
 /// Names in the order of to_array/from_array.
 inline const std::array<const char*, kNumParameters>& parameter_names() {
   static const std::array<const char*, kNumParameters> names = {{
       "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
-      "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z"}};
+      "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z", "c_t"}};
   return names;
 }
 
 template <typename T>
 std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
   return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
-          p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z}};
+          p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z, p.c_t}};
 }
 
 template <typename T>
@@ -73,7 +80,7 @@ Parameters<T> from_array(const T* x) {
   p.kappa = x[0], p.z_c = x[1], p.zeta = x[2], p.k_z = x[3], p.c_v = x[4], p.a_cs = x[5];
   p.a_z = x[6], p.k_a = x[7], p.f_cs = x[8], p.f_z = x[9], p.k_f = x[10], p.t_cs = x[11];
   p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
-  p.n_z = x[17];
+  p.n_z = x[17], p.c_t = x[18];
   return p;
 }
 
@@ -86,6 +93,7 @@ inline Parameters<double> lower_bounds() {
   p.f_cs = 0.2, p.f_z = -5.0, p.k_f = 1.0;
   p.t_cs = 0.0, p.t_z = -1.0, p.k_t = 1.0;
   p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
+  p.c_t = 0.2;
   return p;
 }
 
@@ -96,6 +104,7 @@ inline Parameters<double> upper_bounds() {
   p.f_cs = 3.0, p.f_z = 5.0, p.k_f = 3000.0;
   p.t_cs = 0.5, p.t_z = 1.0, p.k_t = 5000.0;
   p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
+  p.c_t = 2.0;
   return p;
 }
 
@@ -144,6 +153,22 @@ T critical_coordination(const Parameters<T>& par, const T& lambda) {
   return par.z_c * pow(lambda / T(kLambdaReference), par.zeta);
 }
 
+/// Eq. N2b: the Lode factor of a target along the shearing direction n = d_s / |d_s| (d_s the
+/// deviatoric strain rate, |d_s|^2 = shear_squared), g = 2c / ((1 + c) - (1 - c) cos 3 theta),
+/// cos 3 theta = sqrt(6) tr n^3 clamped to [-1, 1]: 1 in triaxial compression, c in extension
+/// (the interpolation ACST uses for M, docs/model.md Eq. 4, after Dafalias & Manzari 2004
+/// Eq. 16). 1 without shear (its target term vanishes then).
+template <typename T>
+T lode_factor(const T& c, const Tensor<T>& deviator, const T& shear_squared) {
+  using std::sqrt;
+  if (!(shear_squared > T(0.0))) return T(1.0);
+  const T norm = sqrt(shear_squared);
+  T cos3 = T(std::sqrt(6.0)) * (deviator * deviator * deviator).trace() / (norm * norm * norm);
+  if (cos3 > T(1.0)) cos3 = T(1.0);
+  if (cos3 < T(-1.0)) cos3 = T(-1.0);
+  return T(2.0) * c / ((T(1.0) + c) - (T(1.0) - c) * cos3);
+}
+
 /// The rate of the state for the strain rate d (compression positive), Eqs. N1-N8: the rates are
 /// homogeneous of degree one in d, so a linear strain increment is integrated over a unit
 /// pseudo-time with d = the increment.
@@ -171,7 +196,10 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
   r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric);
   r.normal = towards(par.f_cs, par.f_z, par.k_f, s.normal);
-  r.tangential = towards(par.t_cs, par.t_z, par.k_t, s.tangential);
+  // Eq. N2b: the tangential anisotropy's target depends on the Lode angle of shearing (in the
+  // DEM its critical norm in extension is about two thirds of that in compression).
+  const T g = lode_factor(par.c_t, deviator, shear_squared);
+  r.tangential = towards(g * par.t_cs, g * par.t_z, par.k_t, s.tangential);
   r.coordination =
       par.k_z * exp(par.n_z * excess) * shear * (critical - s.coordination) +
       par.c_v * volumetric;  // N5

@@ -17,6 +17,8 @@
  *                  E and the parameters are read instead from the parameter file (JSON, written
  *                  by `sffcal calibrate --model network`) named by the environment variable
  *                  SFFCAL_NETWORK_PARAMETERS.
+ *   PROPS(40)      c_t, the Lode factor of the tangential anisotropy (docs/network-model.md Eq.
+ *                  N2b); 1 (no Lode dependence) when NPROPS = 39.
  * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
  * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
  * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
@@ -62,7 +64,8 @@ enum {
   SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS = 20,
   SFFCAL_UMAT_NETWORK_PROP_PARAMETERS = 21,
   SFFCAL_UMAT_NETWORK_NPROPS_STATE = 20,
-  SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39
+  SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39,  /* the first version's 18 parameters */
+  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 40   /* and c_t */
 };
 
 void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double* sse,
