@@ -512,12 +512,15 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
                                                 std::uint64_t seed) {
   std::vector<Parameters<double>> points = {start};
-  std::mt19937_64 random(seed);
+  // The parameters added after the first version draw from a second generator, so that the first
+  // version's parameters get the draws they always had (its fits are reproduced bit for bit).
+  std::mt19937_64 first_version(seed), added(seed + 1);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const auto x = to_array(start), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
   for (int k = 1; k < starts; ++k) {
     std::array<double, kNumParameters> y;
     for (int i = 0; i < kNumParameters; ++i) {
+      std::mt19937_64& random = i < kNumFirstVersionParameters ? first_version : added;
       // Positive ranges: a factor of up to 3 either way; signed ones: +- max(|x|, 1).
       y[i] = lo[i] >= 0.0 && x[i] > 0.0 ? x[i] * std::exp(std::log(3.0) * unit(random))
                                         : x[i] + unit(random) * std::max(std::abs(x[i]), 1.0);

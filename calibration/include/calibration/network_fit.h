@@ -144,7 +144,8 @@ struct ObjectiveValue {
 ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>& par,
                                   bool predicted, const FitOptions& options = {});
 
-/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed): each
+/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t, added
+/// after the first version, from std::mt19937_64(seed + 1)): each
 /// parameter with a positive range multiplied by a log-uniform factor within 3, each signed one
 /// moved uniformly by up to max(|x|, 1); clipped to the bounds.
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
