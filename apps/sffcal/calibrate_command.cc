@@ -56,6 +56,7 @@ int calibrate_network(const std::vector<std::string>& run_paths,
   fit.starts = options.starts;
   fit.seed = options.seed;
   fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  fit.held = options.held_parameters;
   fit.progress = progress_printer();
   const std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
   const std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
@@ -86,6 +87,8 @@ int calibrate_command(const std::vector<std::string>& run_paths,
   if (options.model == "network") return calibrate_network(run_paths, options, command_line);
   if (options.model != "acst")
     throw std::invalid_argument("--model " + options.model + ": acst or network");
+  if (!options.held_parameters.empty())
+    throw std::invalid_argument("--hold applies to --model network (ACST: --range)");
   calibration::FitOptions fit;
   fit.stages = calibration::parse_stages(options.stages);
   fit.loss = calibration::parse_loss(options.loss);
@@ -118,7 +121,7 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
       .add_option("--model", options.model,
                   "acst: the ACST model's staged fit; network: the contact-network model "
                   "(docs/network-model.md; its runs need Z, Lambda and a_t in /analysis/sff; "
-                  "it reads --starts, --seed, --threads, --hold-out, -v)")
+                  "it reads --starts, --seed, --threads, --hold-out, --hold, -v)")
       ->check(CLI::IsMember({"acst", "network"}))
       ->capture_default_str();
   calibrate
@@ -132,6 +135,9 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
                   "run files (with /analysis/sff) predicted with the fitted parameters but not "
                   "fitted; their errors and curves are written with the others")
       ->check(CLI::ExistingFile);
+  calibrate.add_option("--hold", options.held_parameters,
+                       "--model network: a parameter held at its starting value, e.g. c_t (at 1: "
+                       "no Lode dependence); repeatable");
   calibrate.add_option("--range", options.ranges,
                        "NAME=LOW:HIGH: the fit's search range of a parameter instead of the "
                        "default (docs/calibration.md, \"Bounds\"), e.g. n_d=0:60; repeatable");

@@ -28,6 +28,8 @@ struct CalibrateCommandOptions {
   /// else all cores).
   int threads = 0;
   std::vector<std::string> held_out;  ///< run files predicted with the fitted values, not fitted
+  /// --model network: parameters held at their start values (network::FitOptions::held).
+  std::vector<std::string> held_parameters;
   /// NAME=LOW:HIGH search ranges replacing the defaults (calibration::set_search_range).
   std::vector<std::string> ranges;
 };
@@ -36,7 +38,7 @@ struct CalibrateCommandOptions {
 inline const char* const kAcstOnlyOptions[] = {"--stages", "--loss", "--points",
                                                "--max-strain-step", "--range"};
 
-/// Adds --model, --threads, --hold-out and --range to the calibrate subcommand.
+/// Adds --model, --threads, --hold-out, --hold and --range to the calibrate subcommand.
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options);
 
 /// Reads the run files (each needs /analysis/sff), calibrates the model options.model names

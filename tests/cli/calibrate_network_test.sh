@@ -57,6 +57,12 @@ if [ $? -ne 0 ] && [[ $out == *"--stages applies to the ACST fit only"* ]]; then
 else
   echo "FAIL --stages with --model network: $out"; failures=$((failures + 1))
 fi
+out=$("$sffcal" calibrate --model network "$runs/iso_dense_100kPa.h5" --hold xyz -o refused 2>&1)
+if [ $? -ne 0 ] && [[ $out == *"no parameter 'xyz' to hold"* ]]; then
+  echo "ok   --hold with an unknown parameter is refused by name"
+else
+  echo "FAIL --hold xyz: $out"; failures=$((failures + 1))
+fi
 cp "$runs/iso_loose_100kPa.h5" no_z.h5
 "$python" -c "import h5py; f = h5py.File('no_z.h5', 'r+'); del f['analysis/sff/coordination']"
 out=$("$sffcal" calibrate --model network no_z.h5 -o refused 2>&1)
