@@ -61,6 +61,7 @@ int calibrate_network(const std::vector<std::string>& run_paths,
   const std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
   const std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
   refuse_shared_runs(tests, held_out);
+  net::check_unique_names(tests, held_out);
   for (const auto* list : {&tests, &held_out})
     for (const calibration::TestData& t : *list) net::initial_state(t);  // names a test without Z
   const auto start = std::chrono::steady_clock::now();

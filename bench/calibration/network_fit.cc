@@ -56,7 +56,11 @@ int main(int argc, char** argv) {
       throw std::runtime_error("output folder " + out_dir + " exists (not overwritten)");
     const std::vector<calibration::TestData> fit_tests = bench::read_reference_tests(fitted),
                                               held_tests = bench::read_reference_tests(held);
-    options.progress = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
+    net::check_unique_names(fit_tests, held_tests);
+    options.progress = [](const std::string& line) {
+      std::printf("%s\n", line.c_str());
+      std::fflush(stdout);
+    };
     const net::FitResult result = net::fit(fit_tests, net::default_start(), options);
     std::string command_line;
     for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);

@@ -92,18 +92,25 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
 
 }  // namespace
 
+void check_unique_names(const std::vector<TestData>& fitted,
+                        const std::vector<TestData>& held_back) {
+  std::set<std::string> names;
+  for (const auto* list : {&fitted, &held_back})
+    for (const TestData& t : *list)
+      if (!names.insert(t.name).second)
+        throw std::runtime_error("two tests are named '" + t.name +
+                                 "': their outputs would overwrite each other");
+}
+
 std::string write_fit_outputs(const std::string& folder, const std::vector<TestData>& fitted,
                               const std::vector<TestData>& held_back, const FitResult& result,
                               const FitOptions& options, const std::string& program_version,
                               const std::string& command_line) {
   namespace fs = std::filesystem;
+  check_unique_names(fitted, held_back);
   std::vector<TestOutcome> outcomes;
-  std::set<std::string> names;
   for (const auto* list : {&fitted, &held_back})
     for (const TestData& t : *list) {
-      if (!names.insert(t.name).second)
-        throw std::runtime_error("two tests are named '" + t.name +
-                                 "': their outputs would overwrite each other");
       TestOutcome o{&t, list == &fitted, follow_strain_path(result.parameters, t, options),
                     predict(result.parameters, t, options), {}, {}};
       o.along_errors = compare(o.along, t);

@@ -63,6 +63,13 @@ if [ $? -ne 0 ] && [[ $out == *"no parameter 'xyz' to hold"* ]]; then
 else
   echo "FAIL --hold xyz: $out"; failures=$((failures + 1))
 fi
+mkdir -p a b && cp "$runs/iso_loose_100kPa.h5" a/run.h5 && cp "$runs/iso_dense_100kPa.h5" b/run.h5
+out=$("$sffcal" calibrate --model network a/run.h5 --hold-out b/run.h5 -o refused 2>&1)
+if [ $? -ne 0 ] && [[ $out == *"two tests are named 'run'"* ]] && [[ $out != *"start 1"* ]]; then
+  echo "ok   two runs of one name are refused before the fit"
+else
+  echo "FAIL two runs of one name: $out"; failures=$((failures + 1))
+fi
 cp "$runs/iso_loose_100kPa.h5" no_z.h5
 "$python" -c "import h5py; f = h5py.File('no_z.h5', 'r+'); del f['analysis/sff/coordination']"
 out=$("$sffcal" calibrate --model network no_z.h5 -o refused 2>&1)

@@ -160,6 +160,10 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 
+/// Throws std::runtime_error naming the name two of the tests share (their output files would
+/// overwrite each other): for a front end to call before a long fit.
+void check_unique_names(const std::vector<TestData>& fitted, const std::vector<TestData>& held_back);
+
 /// Writes a fit's outputs into `folder` (created if missing; the caller sees that it holds no
 /// earlier outputs) and returns the summary (Markdown):
 /// - parameters.json: the parameter file (read_parameters_json) with the fit's record: program,
