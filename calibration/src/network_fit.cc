@@ -15,6 +15,8 @@
 #include <string>
 #include <utility>
 
+#include "calibration/network_update.h"
+
 namespace calibration::network {
 namespace {
 
@@ -49,13 +51,10 @@ State<double> state_values(const State<T>& s) {
   return map_state<double>(s, [](const T& x) { return value(x); });
 }
 
+// network::admissible (network_update.h) of a state's values.
 template <typename T>
 bool admissible(const State<T>& s) {
-  const double values[] = {value(s.void_ratio), value(s.coordination), value(s.lambda)};
-  for (double v : values)
-    if (!std::isfinite(v) || !(v > 0.0)) return false;
-  return std::isfinite(value(s.fabric.norm())) && std::isfinite(value(s.normal.norm())) &&
-         std::isfinite(value(s.tangential.norm()));
+  return network::admissible(state_values(s));
 }
 
 /// One node of a test's path: the DEM's axial and volumetric strain there and which row and
