@@ -24,7 +24,6 @@ struct Material {
 };
 
 Material material_from_props(const double* props, int nprops) {
-  Material m;
   if (nprops == SFFCAL_UMAT_NETWORK_NPROPS_STATE) {
     return calibration::umat_detail::read_file_once<Material>(
         "SFFCAL_NETWORK_PARAMETERS",
@@ -41,6 +40,7 @@ Material material_from_props(const double* props, int nprops) {
                              ": give 20 (the initial network; E and the parameters from "
                              "SFFCAL_NETWORK_PARAMETERS), 39 (with E and the first 18 parameters) "
                              "or 40 (and c_t)");
+  Material m;
   m.youngs_modulus = props[SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS];
   if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus))
     throw std::runtime_error("PROPS(21), the grains' Young's modulus E = " +

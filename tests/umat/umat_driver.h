@@ -1,12 +1,15 @@
 /* What the UMAT C tests share: one integration point called through umat_ as Abaqus/Standard
  * would call it, a drained triaxial path with the lateral stresses held by a Newton iteration on
- * DDSDDE, DDSDDE against centred differences, and the printed checks. C99, header only. */
+ * DDSDDE, DDSDDE against centred differences, the last message's text, and the printed checks.
+ * C99, header only. */
 #ifndef SFFCAL_TESTS_UMAT_DRIVER_H_
 #define SFFCAL_TESTS_UMAT_DRIVER_H_
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+#include "calibration/umat.h"
 
 void umat_(double* stress, double* statev, double* ddsdde, double* sse, double* spd, double* scd,
            double* rpl, double* ddsddt, double* drplde, double* drpldt, const double* stran,
@@ -23,6 +26,11 @@ static int failures = 0;
 static void check(int ok, const char* what, double figure) {
   printf("%-4s %-68s %.3e\n", ok ? "ok" : "FAIL", what, figure);
   if (!ok) ++failures;
+}
+
+/* Whether the calling thread's last UMAT message contains `text`. */
+static int message_has(const char* text) {
+  return strstr(sffcal_umat_last_message(), text) != NULL;
 }
 
 enum { kMaxStatev = 32, kMaxProps = 40 };

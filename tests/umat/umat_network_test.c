@@ -49,10 +49,6 @@ static Point make_point(const double* youngs_and_parameters, int ntens, int npro
   return pt;
 }
 
-static int message_has(const char* text) {
-  return strstr(sffcal_umat_last_message(), text) != NULL;
-}
-
 enum { kIncrements = 400 };
 static const double kAxialStrainEnd = 0.20;
 
@@ -165,7 +161,6 @@ static void ddsdde_matches_finite_differences(const double* youngs_and_parameter
   const double error = ddsdde_difference_error(&pt, dstran, 1e-7);
   check(error <= 1e-6, "DDSDDE matches centred differences, error / max |DDSDDE|", error);
 }
-
 
 /* Calls the UMAT once with a small compression on a copy of pt; returns PNEWDT and checks that
  * STRESS came back unchanged. */

@@ -126,10 +126,6 @@ static void ddsdde_matches_finite_differences(const double* parameters) {
   check(error <= 1e-6, "DDSDDE matches centred differences, error / max |DDSDDE|", error);
 }
 
-static int message_has(const char* text) {
-  return strstr(sffcal_umat_last_message(), text) != NULL;
-}
-
 static void failures_ask_for_a_smaller_increment(const double* parameters,
                                                  const char* parameter_file) {
   double stress[6], ddsdde[36];
