@@ -138,7 +138,7 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
       ->check(CLI::ExistingFile);
   calibrate.add_option("--hold", options.held_parameters,
                        "--model network: a parameter held at its starting value, e.g. c_t (at 1: "
-                       "no Lode dependence); repeatable");
+                       "no Lode dependence) or c_l (at 0); repeatable");
   calibrate.add_option("--range", options.ranges,
                        "NAME=LOW:HIGH: the fit's search range of a parameter instead of the "
                        "default (docs/calibration.md, \"Bounds\"), e.g. n_d=0:60; repeatable");

@@ -441,14 +441,16 @@ Parameters<double> default_start() {
   p.f_cs = 1.05, p.f_z = 1.0, p.k_f = 100.0;
   p.t_cs = 0.085, p.t_z = 0.1, p.k_t = 200.0;
   p.d_z = 3.0, p.d_a = 2.0, p.n_r = 0.0, p.n_z = 0.0;
-  p.c_t = 1.0;
+  p.c_t = 1.0, p.c_l = 0.0;
   return p;
 }
 
 namespace {
 
 // The parameters held at their start: those the options name, and those the tests cannot
-// determine (c_t, the Lode factor of Eq. N2b, without an extension test). Sorted, each once.
+// determine: c_t (the Lode factor of Eq. N2b) without an extension test, c_l (Eq. N5b) without an
+// undrained one (drained tests barely see it: refits of synthetic drained tests spread over a third
+// of its range). Sorted, each once.
 std::vector<int> held_parameters(const std::vector<TestData>& tests, const FitOptions& options) {
   std::vector<int> held;
   for (const std::string& name : options.held) {
@@ -460,7 +462,10 @@ std::vector<int> held_parameters(const std::vector<TestData>& tests, const FitOp
   }
   if (std::none_of(tests.begin(), tests.end(),
                    [](const TestData& t) { return axial_direction(t.path) < 0.0; }))
-    held.push_back(kNumParameters - 1);
+    held.push_back(kLodeFactorIndex);
+  if (std::none_of(tests.begin(), tests.end(),
+                   [](const TestData& t) { return is_undrained(t.path); }))
+    held.push_back(kLambdaGainIndex);
   std::sort(held.begin(), held.end());
   held.erase(std::unique(held.begin(), held.end()), held.end());
   return held;
@@ -500,6 +505,15 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
   if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr)) {
     summary.termination_type = ceres::FAILURE;
     summary.message = "the starting point's paths leave the admissible states";
+    // Say where: the first test whose path stops, and why.
+    const Parameters<double> par = from_array(x.data());
+    for (const TestData& t : tests) {
+      const Curve c = predicted ? predict(par, t, options) : follow_strain_path(par, t, options);
+      if (!c.complete) {
+        summary.message += " (test '" + t.name + "': " + c.message + ")";
+        break;
+      }
+    }
     return summary;
   }
   ceres::Solve(solver, &problem, &summary);
@@ -511,15 +525,19 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
                                                 std::uint64_t seed) {
   std::vector<Parameters<double>> points = {start};
-  // The parameters added after the first version draw from a second generator, so that the first
-  // version's parameters get the draws they always had (its fits are reproduced bit for bit).
-  std::mt19937_64 first_version(seed), added(seed + 1);
+  // Each parameter added after the first version draws from its own generator (seed + 1 for c_t,
+  // seed + 2 for c_l), so that the parameters before it get the draws they always had (earlier
+  // fits are reproduced bit for bit).
+  std::vector<std::mt19937_64> generators;
+  for (int g = 0; g <= kNumParameters - kNumFirstVersionParameters; ++g)
+    generators.emplace_back(seed + static_cast<std::uint64_t>(g));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const auto x = to_array(start), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
   for (int k = 1; k < starts; ++k) {
     std::array<double, kNumParameters> y;
     for (int i = 0; i < kNumParameters; ++i) {
-      std::mt19937_64& random = i < kNumFirstVersionParameters ? first_version : added;
+      std::mt19937_64& random =
+          generators[static_cast<std::size_t>(std::max(0, i - kNumFirstVersionParameters + 1))];
       // Positive ranges: a factor of up to 3 either way; signed ones: +- max(|x|, 1).
       y[i] = lo[i] >= 0.0 && x[i] > 0.0 ? x[i] * std::exp(std::log(3.0) * unit(random))
                                         : x[i] + unit(random) * std::max(std::abs(x[i]), 1.0);
@@ -575,6 +593,7 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
                            ? std::string(line) + " (" + summary.message + ")"
                            : std::string(line));
     };
+    const std::array<double, kNumParameters> own_point = x;
     const ceres::Solver::Summary along = solve(tests, false, options, x);
     report("along the DEM strain paths", along);
     if (along.termination_type == ceres::FAILURE) {
@@ -582,8 +601,15 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
       ++k;
       continue;
     }
-    const ceres::Solver::Summary predicted = solve(tests, true, options, x);
+    ceres::Solver::Summary predicted = solve(tests, true, options, x);
     report("on the predicted paths", predicted);
+    if (predicted.termination_type == ceres::FAILURE && predicted.iterations.empty()) {
+      // The first stage's fit to the DEM's strain paths can end where a predicted path (its
+      // own lateral stress or volume) leaves the admissible states; the start's own point may not.
+      x = own_point;
+      predicted = solve(tests, true, options, x);
+      report("on the predicted paths from the start's own point", predicted);
+    }
     const bool usable = predicted.IsSolutionUsable() && std::isfinite(predicted.final_cost);
     if (usable && (!found || predicted.final_cost < best.final_cost)) {
       found = true;

@@ -170,7 +170,7 @@ Parameters<double> read_parameters_json(const std::string& path, double* youngs_
   for (int i = 0; i < kNumParameters; ++i) {
     const std::string name = parameter_names()[i], key = "parameters." + name;
     if (i >= kNumFirstVersionParameters && !params.contains(name)) {
-      x[i] = kCtIfAbsent;  // a file of the first version: no Lode dependence
+      x[i] = value_if_absent(i);  // a file written before the parameter was added
       continue;
     }
     if (!params.contains(name) || !params[name].is_object() || !params[name].contains("value"))

@@ -38,19 +38,20 @@ Material material_from_props(const double* props, int nprops) {
   if (nprops < SFFCAL_UMAT_NETWORK_NPROPS_ALL)
     throw std::runtime_error("NPROPS = " + std::to_string(nprops) +
                              ": give 20 (the initial network; E and the parameters from "
-                             "SFFCAL_NETWORK_PARAMETERS), 39 (with E and the first 18 parameters) "
-                             "or 40 (and c_t)");
+                             "SFFCAL_NETWORK_PARAMETERS), 39 (with E and the first 18 parameters), "
+                             "40 (and c_t) or 41 (and c_l)");
   Material m;
   m.youngs_modulus = props[SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS];
   if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus))
     throw std::runtime_error("PROPS(21), the grains' Young's modulus E = " +
                              std::to_string(m.youngs_modulus) + " Pa, must be > 0");
-  // PROPS(22..39), the first version's 18 parameters, then c_t (PROPS(40)) where given.
+  // PROPS(22..39), the first version's 18 parameters, then c_t (PROPS(40)) and c_l (PROPS(41))
+  // where given.
   double values[net::kNumParameters];
   for (int i = 0; i < net::kNumParameters; ++i)
     values[i] = SFFCAL_UMAT_NETWORK_PROP_PARAMETERS + i < nprops
                     ? props[SFFCAL_UMAT_NETWORK_PROP_PARAMETERS + i]
-                    : net::kCtIfAbsent;
+                    : net::value_if_absent(i);
   m.parameters = net::from_array(values);
   return m;
 }

@@ -23,7 +23,7 @@ namespace {
 Parameters<double> plausible() {
   Parameters<double> p = default_start();
   p.kappa = 80.0, p.c_v = 4.0, p.a_z = 0.9, p.k_a = 15.0, p.f_z = 2.0, p.t_z = 0.2;
-  p.d_z = 2.3, p.d_a = 0.5, p.n_r = 1.3, p.n_z = 4.0, p.k_z = 4.0;
+  p.d_z = 2.3, p.d_a = 0.5, p.n_r = 1.3, p.n_z = 4.0, p.k_z = 4.0, p.c_l = 0.5;
   return p;
 }
 
@@ -79,8 +79,10 @@ TEST(NetworkModel, StressIsTheSffEquationOfTheSffModule) {
 }
 
 TEST(NetworkModel, IsotropicCompressionFollowsItsClosedForm) {
-  // d = (v/3) I: no shear, so the anisotropies stay, ln Lambda rises by kappa v / 3 (N6), Z by
-  // c_v v (N5) and 1 + e falls by exp(-v) (N1).
+  // d = (v/3) I: no shear, so the anisotropies stay, ln Lambda rises by kappa v / 3 (N6), Z at
+  // c_v v + c_l zeta Z kappa v / 3 per unit pseudo-time (N5, N5b), a linear equation whose
+  // solution is Z0 e^a + (c_v v / a)(e^a - 1), a = c_l zeta kappa v / 3, and 1 + e falls by
+  // exp(-v) (N1).
   const Parameters<double> p = plausible();
   std::mt19937_64 random(3);
   const State<double> s0 = random_state(random);
@@ -89,7 +91,10 @@ TEST(NetworkModel, IsotropicCompressionFollowsItsClosedForm) {
   const State<double> s = integrate(p, s0, d, substeps_for(p, s0, d.norm()));
   // Within RK4's error at the default substep (0.05^5 / 120 of the change per substep).
   EXPECT_NEAR(s.lambda, s0.lambda * std::exp(p.kappa * v / 3.0), 1e-9 * s0.lambda);
-  EXPECT_NEAR(s.coordination, s0.coordination + p.c_v * v, 1e-12);
+  const double a = p.c_l * p.zeta * p.kappa * v / 3.0;
+  EXPECT_NEAR(s.coordination,
+              s0.coordination * std::exp(a) + p.c_v * v / a * std::expm1(a), 1e-12);
+  EXPECT_GT(std::abs(s.coordination - s0.coordination - p.c_v * v), 1e-4);  // N5b acts
   EXPECT_NEAR(s.void_ratio, (1.0 + s0.void_ratio) * std::exp(-v) - 1.0, 1e-12);
   EXPECT_LT((s.fabric - s0.fabric).norm(), 1e-15);
   EXPECT_LT((s.normal - s0.normal).norm(), 1e-15);
@@ -264,7 +269,7 @@ TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
       const ObjectiveValue value = evaluate_objective(*t, p, predicted);
       ASSERT_TRUE(value.usable);
       const auto x = to_array(p);
-      const int c_t = kNumParameters - 1;
+      const int c_t = kLodeFactorIndex;
       if (t == &extension)
         EXPECT_GT(value.jacobian.col(c_t).norm(), 1.0) << "extension sees c_t";
       else
@@ -296,9 +301,10 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
       synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 31, 0.2),
       synthetic_test(truth, "loose", 0.73, 4.3, 7e-4, true, 31, 0.2)};
   auto start = to_array(truth);
-  // c_t (the last) is held without an extension test, and compression does not see it.
+  // c_t is held without an extension test (compression does not see it), c_l without an undrained
+  // one.
   const double factors[kNumParameters] = {1.2, 0.95, 1.2,  0.8, 1.1, 0.95, 1.2, 1.15, 1.05, 0.9,
-                                          1.1, 1.05, 0.9, 1.2, 1.1, 1.2,  0.9, 1.1,  1.0};
+                                          1.1, 1.05, 0.9, 1.2, 1.1, 1.2,  0.9, 1.1,  1.0, 1.0};
   for (int i = 0; i < kNumParameters; ++i) start[i] *= factors[i];
   FitOptions options;
   options.max_iterations = 300;
@@ -356,9 +362,11 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     for (const TestData& t : clean) noisy.push_back(with_noise(t, kNoise, random));
     const FitResult result = fit(noisy, truth);
     ASSERT_TRUE(result.errors.estimated);
-    // c_t, held without an extension test, has none.
-    EXPECT_TRUE(std::isnan(result.errors.independent[kNumParameters - 1]));
+    // c_t, held without an extension test, and c_l, held without an undrained one, have none.
+    for (int held : {kLodeFactorIndex, kLambdaGainIndex})
+      EXPECT_TRUE(std::isnan(result.errors.independent[held])) << parameter_names()[held];
     EXPECT_EQ(result.parameters.c_t, truth.c_t);
+    EXPECT_EQ(result.parameters.c_l, truth.c_l);
     estimates.push_back(to_array(result.parameters));
     for (int i = 0; i < kNumParameters; ++i) {
       mean_error[i] += result.errors.independent[i] / kRefits;
@@ -366,8 +374,9 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     }
   }
   double log_sum = 0.0;
-  const int estimated = kNumParameters - 1;  // all but c_t
-  for (int i = 0; i < estimated; ++i) {
+  const int estimated = kNumParameters - 2;  // all but c_t and c_l
+  for (int i = 0; i < kNumParameters; ++i) {
+    if (i == kLodeFactorIndex || i == kLambdaGainIndex) continue;
     double mean = 0.0, variance = 0.0;
     for (const auto& x : estimates) mean += x[i] / kRefits;
     for (const auto& x : estimates) variance += (x[i] - mean) * (x[i] - mean) / (kRefits - 1);
@@ -493,8 +502,8 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
             (i == 7 ? std::string("-1") : std::to_string(x[i])) + ", \"unit\": \"1\"}";
   expect_error(text + "}}", "k_a");  // out of range
   expect_error("{\"model\": ", "not valid JSON");
-  // A file of the first version (no c_t) reads with c_t = 1, no Lode dependence; a c_t out of its
-  // range is refused by name.
+  // A file of the first version (no c_t, c_l) reads with c_t = 1, no Lode dependence, and c_l = 0,
+  // no gain of contacts with the normal force; a c_t or c_l out of its range is refused by name.
   std::string first_version = R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8,
                                   "unit": "Pa"}, "parameters": {)";
   for (int i = 0; i < kNumFirstVersionParameters; ++i)
@@ -505,7 +514,9 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
     out << first_version << "}}";
   }
   EXPECT_EQ(read_parameters_json(path).c_t, 1.0);
+  EXPECT_EQ(read_parameters_json(path).c_l, 0.0);
   expect_error(first_version + R"(, "c_t": {"value": 5, "unit": "1"}}})", "c_t");
+  expect_error(first_version + R"(, "c_l": {"value": -0.1, "unit": "1"}}})", "c_l");
   std::remove(path.c_str());
 }
 

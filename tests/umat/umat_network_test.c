@@ -21,7 +21,8 @@
 static const double kP0 = 100e3; /* initial isotropic stress [Pa] */
 static const double kE0 = 0.574, kZ0 = 6.69;
 static const double kAc = -0.022, kAn = 0.040, kAt = -0.0015; /* triaxial parts t(.) */
-enum { kNumParameters = 19 }; /* PROPS(22..40) */
+/* PROPS(22..41) */
+enum { kNumParameters = SFFCAL_UMAT_NETWORK_NPROPS_MAX - SFFCAL_UMAT_NETWORK_PROP_PARAMETERS };
 
 /* x diag(-1, -1, 2) / 3 in the order 11, 22, 33, 12, 13, 23. */
 static void axisymmetric(double x, double* props) {
@@ -30,7 +31,7 @@ static void axisymmetric(double x, double* props) {
   props[3] = props[4] = props[5] = 0.0;
 }
 
-/* youngs_and_parameters: E then the 19 parameters (PROPS 21..40). */
+/* youngs_and_parameters: E then the 20 parameters (PROPS 21..41). */
 static Point make_point(const double* youngs_and_parameters, int ntens, int nprops) {
   Point pt;
   memset(&pt, 0, sizeof pt);
@@ -47,6 +48,28 @@ static Point make_point(const double* youngs_and_parameters, int ntens, int npro
   for (int i = SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS; i < nprops; ++i)
     pt.props[i] = youngs_and_parameters[i - SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS];
   return pt;
+}
+
+/* STRESS after one increment dstran from the initial state, with NPROPS = nprops and, where
+ * index >= 0, PROPS(index + 1) = value. */
+static void one_step(const double* youngs_and_parameters, int nprops, int index, double value,
+                     const double* dstran, double* stress) {
+  Point pt = make_point(youngs_and_parameters, 6, nprops);
+  if (index >= 0) pt.props[index] = value;
+  double ddsdde[36];
+  call_umat(&pt, dstran, stress, ddsdde, 0);
+}
+
+/* PROPS(index + 1), a parameter added after the first version: NPROPS = index (without it) gives
+ * the same increment dstran as the value `absent`, and `value` a different S33. */
+static void added_parameter_acts(const double* youngs_and_parameters, int index, double absent,
+                                 double value, const double* dstran, const char* what) {
+  double without[6], as_absent[6], other[6];
+  one_step(youngs_and_parameters, index, -1, 0.0, dstran, without);
+  one_step(youngs_and_parameters, index + 1, index, absent, dstran, as_absent);
+  one_step(youngs_and_parameters, index + 1, index, value, dstran, other);
+  check(memcmp(without, as_absent, sizeof without) == 0 && fabs(other[2] - without[2]) > 1e-6 * kP0,
+        what, fabs(other[2] - without[2]));
 }
 
 enum { kIncrements = 400 };
@@ -122,19 +145,18 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
   check(four_error <= 1e-12, "NTENS = 4 gives the NTENS = 6 path, relative q difference",
         four_error);
 
-  /* PROPS(40), c_t: NPROPS = 39 stands for c_t = 1; another c_t changes an extension increment. */
+  /* The parameters added after the first version: without them in PROPS they take their value of
+   * the model before them; another value changes an increment that sees them. PROPS(40), c_t: an
+   * extension increment; PROPS(41), c_l: a compression increment (Lambda grows, and Z with it). */
+  const int ct = SFFCAL_UMAT_NETWORK_PROP_PARAMETERS + 18, cl = ct + 1;
   const double extension[6] = {1e-3, 1e-3, 2e-3, 0, 0, 0}; /* tension positive: the axis unloads */
-  double s39[6], s40[6], s06[6];
-  Point p39 = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_ALL);
-  Point p40 = make_point(youngs_and_parameters, 6, SFFCAL_UMAT_NETWORK_NPROPS_MAX);
-  p40.props[SFFCAL_UMAT_NETWORK_NPROPS_MAX - 1] = 1.0;
-  call_umat(&p39, extension, s39, ddsdde, 0);
-  call_umat(&p40, extension, s40, ddsdde, 0);
-  p40.props[SFFCAL_UMAT_NETWORK_NPROPS_MAX - 1] = 0.6;
-  call_umat(&p40, extension, s06, ddsdde, 0);
-  check(memcmp(s39, s40, sizeof s39) == 0 && fabs(s06[2] - s39[2]) > 1e-6 * kP0,
-        "NPROPS = 39 is c_t = 1; c_t = 0.6 in PROPS(40) changes an extension step, |dS33| [Pa]",
-        fabs(s06[2] - s39[2]));
+  const double compression[6] = {0, 0, -2e-3, 0, 0, 0};
+  added_parameter_acts(youngs_and_parameters, ct, 1.0, 0.6, extension,
+                       "NPROPS = 39 is c_t = 1; c_t = 0.6 in PROPS(40) changes an extension step, "
+                       "|dS33| [Pa]");
+  added_parameter_acts(youngs_and_parameters, cl, 0.0, 0.1, compression,
+                       "NPROPS = 40 is c_l = 0; c_l = 0.1 in PROPS(41) changes a compression step, "
+                       "|dS33| [Pa]");
 
   /* The name chooses the entry in any case; another name goes to ACST, which refuses these
    * PROPS (its parameters, PROPS(8..22), would be the anisotropies and E here). */

@@ -72,7 +72,7 @@ struct FitOptions {
   int starts = 1;
   std::uint64_t seed = 1;
   /// Parameters held at their start values (parameter_names()), besides c_t without an extension
-  /// test, which is always held.
+  /// test and c_l without an undrained test, which are always held.
   std::vector<std::string> held;
   /// Called with a line after each stage of each start (for a progress display); may be empty.
   std::function<void(const std::string&)> progress;
@@ -102,8 +102,8 @@ struct Errors {
 Errors compare(const Curve& curve, const TestData& test);
 
 /// Standard errors of fitted parameters from the second stage's residuals r and Jacobian J at the
-/// solution, over the parameters inside their bounds and not held (one at a bound, or c_t without
-/// an extension test, which the fit holds: NaN here):
+/// solution, over the parameters inside their bounds and not held (one at a bound, c_t without an
+/// extension test or c_l without an undrained test, which the fit holds: NaN here):
 /// `independent`, s^2 (J^T J)^-1 with s^2 = |r|^2 / (n - k), as if the residuals were
 /// independent; `robust`, the sandwich of calibration::autocorrelation_robust_standard_errors
 /// (fit.h) with one series per test and residual kind (eta; epsilon_v or p; Z; Lambda; a_c; a_n;
@@ -144,8 +144,8 @@ struct ObjectiveValue {
 ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>& par,
                                   bool predicted, const FitOptions& options = {});
 
-/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t, added
-/// after the first version, from std::mt19937_64(seed + 1)): each
+/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t and c_l,
+/// added after the first version, from std::mt19937_64(seed + 1) and (seed + 2)): each
 /// parameter with a positive range multiplied by a log-uniform factor within 3, each signed one
 /// moved uniformly by up to max(|x|, 1); clipped to the bounds.
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
@@ -154,9 +154,10 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// Fits the parameters by Levenberg-Marquardt within the bounds in two stages: first to the
 /// tests' micro histories and stresses along their DEM strain paths (follow_strain_path), then
 /// to the micro histories, q/p and the volumetric strain (drained) or p (undrained) on the paths
-/// the model predicts (predict). Residuals and their scales: FitOptions. Without an extension
-/// test c_t (the Lode factor) is held at its start value. Fills the standard errors at the
-/// solution.
+/// the model predicts (predict); where the second stage cannot start from the first's result (a
+/// predicted path leaves the admissible states) it starts from the start's own point. Residuals
+/// and their scales: FitOptions. Without an extension test c_t (the Lode factor) is held at its
+/// start value, without an undrained test c_l (N5b). Fills the standard errors at the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 

@@ -19,6 +19,8 @@
  *                  SFFCAL_NETWORK_PARAMETERS.
  *   PROPS(40)      c_t, the Lode factor of the tangential anisotropy (docs/network-model.md Eq.
  *                  N2b); 1 (no Lode dependence) when NPROPS = 39.
+ *   PROPS(41)      c_l, the coordination's gain per unit of ln Lambda (docs/network-model.md Eq.
+ *                  N5b); 0 (none) when NPROPS < 41.
  * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
  * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
  * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
@@ -65,7 +67,7 @@ enum {
   SFFCAL_UMAT_NETWORK_PROP_PARAMETERS = 21,
   SFFCAL_UMAT_NETWORK_NPROPS_STATE = 20,
   SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39,  /* the first version's 18 parameters */
-  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 40   /* and c_t */
+  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 41   /* and c_t, c_l */
 };
 
 void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double* sse,
