@@ -57,6 +57,7 @@ int calibrate_network(const std::vector<std::string>& run_paths,
   fit.seed = options.seed;
   fit.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   fit.held = options.held_parameters;
+  fit.first_stage = !options.predicted_only;
   fit.progress = progress_printer();
   const std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
   const std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
@@ -90,6 +91,8 @@ int calibrate_command(const std::vector<std::string>& run_paths,
     throw std::invalid_argument("--model " + options.model + ": acst or network");
   if (!options.held_parameters.empty())
     throw std::invalid_argument("--hold applies to --model network (ACST: --range)");
+  if (options.predicted_only)
+    throw std::invalid_argument("--predicted-only applies to --model network (ACST: --stages)");
   calibration::FitOptions fit;
   fit.stages = calibration::parse_stages(options.stages);
   fit.loss = calibration::parse_loss(options.loss);
@@ -122,7 +125,7 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
       .add_option("--model", options.model,
                   "acst: the ACST model's staged fit; network: the contact-network model "
                   "(docs/network-model.md; its runs need Z, Lambda and a_t in /analysis/sff; "
-                  "it reads --starts, --seed, --threads, --hold-out, --hold, -v)")
+                  "it reads --starts, --seed, --threads, --hold-out, --hold, --predicted-only, -v)")
       ->check(CLI::IsMember({"acst", "network"}))
       ->capture_default_str();
   calibrate
@@ -139,6 +142,10 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
   calibrate.add_option("--hold", options.held_parameters,
                        "--model network: a parameter held at its starting value, e.g. c_t (at 1: "
                        "no Lode dependence) or c_l (at 0); repeatable");
+  calibrate.add_flag("--predicted-only", options.predicted_only,
+                     "--model network: fit on the predicted paths from each start directly, "
+                     "without the first stage along the DEM's strain paths (faster where an "
+                     "undrained run makes that stage slow; docs/network-model.md)");
   calibrate.add_option("--range", options.ranges,
                        "NAME=LOW:HIGH: the fit's search range of a parameter instead of the "
                        "default (docs/calibration.md, \"Bounds\"), e.g. n_d=0:60; repeatable");

@@ -30,6 +30,8 @@ struct CalibrateCommandOptions {
   std::vector<std::string> held_out;  ///< run files predicted with the fitted values, not fitted
   /// --model network: parameters held at their start values (network::FitOptions::held).
   std::vector<std::string> held_parameters;
+  /// --model network: no first stage (network::FitOptions::first_stage = false).
+  bool predicted_only = false;
   /// NAME=LOW:HIGH search ranges replacing the defaults (calibration::set_search_range).
   std::vector<std::string> ranges;
 };
@@ -38,7 +40,8 @@ struct CalibrateCommandOptions {
 inline const char* const kAcstOnlyOptions[] = {"--stages", "--loss", "--points",
                                                "--max-strain-step", "--range"};
 
-/// Adds --model, --threads, --hold-out, --hold and --range to the calibrate subcommand.
+/// Adds --model, --threads, --hold-out, --hold, --predicted-only and --range to the calibrate
+/// subcommand.
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options);
 
 /// Reads the run files (each needs /analysis/sff), calibrates the model options.model names

@@ -4,7 +4,7 @@
 // run file (.h5) analysed by `sffcal sff`.
 //
 // usage: network_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] [--hold NAME]...
-//                    --out DIR
+//                    [--predicted-only] --out DIR
 //   (--hold NAME: the parameter held at its start value, e.g. c_t at 1: no Lode dependence)
 //   e.g. build/bench/network_fit dense_100kPa loose_200kPa --hold-out dense_300kPa --out out/n1
 // Writes what `sffcal calibrate --model network` writes (network::write_fit_outputs: the
@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
         options.starts = std::atoi(argv[++k]);
       } else if (a == "--hold" && k + 1 < argc) {
         options.held.push_back(argv[++k]);
+      } else if (a == "--predicted-only") {
+        options.first_stage = false;
       } else if (a == "--out" && k + 1 < argc) {
         out_dir = argv[++k];
       } else {
@@ -48,8 +50,8 @@ int main(int argc, char** argv) {
       }
     }
     if (fitted.empty() || out_dir.empty()) {
-      std::fprintf(stderr, "usage: network_fit FITTED... [--hold-out HELD...] "
-                           "[--threads N] [--starts N] [--hold NAME]... --out DIR\n");
+      std::fprintf(stderr, "usage: network_fit FITTED... [--hold-out HELD...] [--threads N] "
+                           "[--starts N] [--hold NAME]... [--predicted-only] --out DIR\n");
       return 2;
     }
     if (std::filesystem::exists(out_dir))

@@ -594,8 +594,12 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
                            : std::string(line));
     };
     const std::array<double, kNumParameters> own_point = x;
-    const ceres::Solver::Summary along = solve(tests, false, options, x);
-    report("along the DEM strain paths", along);
+    ceres::Solver::Summary along;  // without the first stage: no iterations, not a failure
+    along.termination_type = ceres::CONVERGENCE;
+    if (options.first_stage) {
+      along = solve(tests, false, options, x);
+      report("along the DEM strain paths", along);
+    }
     if (along.termination_type == ceres::FAILURE) {
       best.start_costs.push_back(std::numeric_limits<double>::quiet_NaN());
       ++k;
@@ -603,7 +607,8 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
     }
     ceres::Solver::Summary predicted = solve(tests, true, options, x);
     report("on the predicted paths", predicted);
-    if (predicted.termination_type == ceres::FAILURE && predicted.iterations.empty()) {
+    if (predicted.termination_type == ceres::FAILURE && predicted.iterations.empty() &&
+        !along.iterations.empty()) {
       // The first stage's fit to the DEM's strain paths can end where a predicted path (its
       // own lateral stress or volume) leaves the admissible states; the start's own point may not.
       x = own_point;
@@ -616,10 +621,14 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
       best.parameters = from_array(x.data());
       best.initial_cost = predicted.initial_cost;
       best.final_cost = predicted.final_cost;
-      best.iterations = static_cast<int>(along.iterations.size() + predicted.iterations.size()) - 2;
+      auto iterations = [](const ceres::Solver::Summary& stage) {
+        return stage.iterations.empty() ? 0 : static_cast<int>(stage.iterations.size()) - 1;
+      };
+      best.iterations = iterations(along) + iterations(predicted);
       best.converged = predicted.termination_type == ceres::CONVERGENCE;
       best.start = k;
-      best.report = "along the DEM strain paths: " + along.BriefReport() +
+      best.report = "along the DEM strain paths: " +
+                    (along.iterations.empty() ? std::string("not run") : along.BriefReport()) +
                     "\non the predicted paths: " + predicted.BriefReport();
     }
     best.start_costs.push_back(usable ? predicted.final_cost

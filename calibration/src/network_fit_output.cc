@@ -147,6 +147,7 @@ std::string write_fit_outputs(const std::string& folder, const std::vector<TestD
   record["fit"] = {
       {"starts", options.starts},
       {"seed", options.seed},
+      {"first_stage", options.first_stage},
       {"winning_start", result.start + 1},  // 1-based, as the progress lines count
       {"start_final_costs", costs},
       {"final_cost", result.final_cost},

@@ -50,7 +50,26 @@ check "fe-check reads the fitted parameter file: element vs driver in q passes" 
 check "fe-check: element vs driver in eps_v passes" grep -Eq "element vs driver +eps_v .* pass" check.log
 check "fe-check: no element vs driver failure" bash -c "! grep -E 'element vs driver.*FAIL' check.log"
 
+# --predicted-only: the second stage from the start directly, recorded in parameters.json.
+if "$sffcal" calibrate --model network "$runs/iso_dense_100kPa.h5" --starts 1 --predicted-only \
+    -o direct > direct.log 2>&1; then
+  check "--predicted-only: no first stage, the second from the start" \
+    bash -c "grep -q 'start 1 of 1, on the predicted paths' direct.log && \
+             ! grep -q 'along the DEM strain paths' direct.log"
+  check "--predicted-only is recorded in parameters.json" \
+    "$python" -c "import json, sys; sys.exit(json.load(open('direct/parameters.json'))['fit']['first_stage'] is not False)"
+else
+  echo "FAIL calibrate --model network --predicted-only exits 0:"; cat direct.log
+  failures=$((failures + 1))
+fi
+
 # Refusals, each naming the cause.
+out=$("$sffcal" calibrate "$runs/iso_dense_100kPa.h5" --predicted-only -o refused 2>&1)
+if [ $? -ne 0 ] && [[ $out == *"--predicted-only applies to --model network"* ]]; then
+  echo "ok   --predicted-only with the ACST fit is refused by name"
+else
+  echo "FAIL --predicted-only with ACST: $out"; failures=$((failures + 1))
+fi
 out=$("$sffcal" calibrate --model network "$runs/iso_dense_100kPa.h5" --stages joint -o refused 2>&1)
 if [ $? -ne 0 ] && [[ $out == *"--stages applies to the ACST fit only"* ]]; then
   echo "ok   --stages with --model network is refused by name"

@@ -74,6 +74,10 @@ struct FitOptions {
   /// Parameters held at their start values (parameter_names()), besides c_t without an extension
   /// test and c_l without an undrained test, which are always held.
   std::vector<std::string> held;
+  /// Fit along the DEM's strain paths first (the first stage), then on the predicted paths from its
+  /// result; false: on the predicted paths from each start directly (docs/network-model.md,
+  /// "Calibration": faster where an undrained test makes the first stage slow).
+  bool first_stage = true;
   /// Called with a line after each stage of each start (for a progress display); may be empty.
   std::function<void(const std::string&)> progress;
 };
