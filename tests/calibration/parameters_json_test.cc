@@ -26,16 +26,18 @@ void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// The error message of read_parameters_json, or "" when it does not throw.
+// The error message of read_parameters_json, or "" when it does not throw; the file is removed.
 std::string read_error(const std::string& text) {
   const std::string path = temp_path("bad");
   write_text(path, text);
+  std::string message;
   try {
     read_parameters_json(path);
   } catch (const std::runtime_error& e) {
-    return e.what();
+    message = e.what();
   }
-  return "";
+  std::remove(path.c_str());
+  return message;
 }
 
 std::string valid_text(const std::string& replace_key = "", const std::string& entry = "") {
