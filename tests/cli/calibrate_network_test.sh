@@ -57,7 +57,8 @@ if "$sffcal" calibrate --model network "$runs/iso_dense_100kPa.h5" --starts 1 --
     bash -c "grep -q 'start 1 of 1, on the predicted paths' direct.log && \
              ! grep -q 'along the DEM strain paths' direct.log"
   check "--predicted-only is recorded in parameters.json" \
-    "$python" -c "import json, sys; sys.exit(json.load(open('direct/parameters.json'))['fit']['first_stage'] is not False)"
+    "$python" -c "import json, sys
+sys.exit(json.load(open('direct/parameters.json'))['fit']['first_stage'] is not False)"
 else
   echo "FAIL calibrate --model network --predicted-only exits 0:"; cat direct.log
   failures=$((failures + 1))

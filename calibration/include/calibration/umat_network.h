@@ -19,8 +19,9 @@
  *                  SFFCAL_NETWORK_PARAMETERS.
  *   PROPS(40)      c_t, the Lode factor of the tangential anisotropy (docs/network-model.md Eq.
  *                  N2b); 1 (no Lode dependence) when NPROPS = 39.
- *   PROPS(41)      c_l, the coordination's gain per unit of ln Lambda (docs/network-model.md Eq.
- *                  N5b); 0 (none) when NPROPS < 41.
+ *   PROPS(41)      c_l, the coordination's gain with the normal force as a share of the critical
+ *                  line's zeta, d ln Z = c_l zeta d ln Lambda (docs/network-model.md Eq. N5b);
+ *                  0 (none) when NPROPS < 41.
  * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
  * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
  * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
