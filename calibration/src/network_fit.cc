@@ -594,16 +594,15 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
                            : std::string(line));
     };
     const std::array<double, kNumParameters> own_point = x;
-    ceres::Solver::Summary along;  // without the first stage: no iterations, not a failure
-    along.termination_type = ceres::CONVERGENCE;
+    ceres::Solver::Summary along;  // no iterations without the first stage
     if (options.first_stage) {
       along = solve(tests, false, options, x);
       report("along the DEM strain paths", along);
-    }
-    if (along.termination_type == ceres::FAILURE) {
-      best.start_costs.push_back(std::numeric_limits<double>::quiet_NaN());
-      ++k;
-      continue;
+      if (along.termination_type == ceres::FAILURE) {
+        best.start_costs.push_back(std::numeric_limits<double>::quiet_NaN());
+        ++k;
+        continue;
+      }
     }
     ceres::Solver::Summary predicted = solve(tests, true, options, x);
     report("on the predicted paths", predicted);
