@@ -21,7 +21,7 @@
 static const double kP0 = 100e3; /* initial isotropic stress [Pa] */
 static const double kE0 = 0.574, kZ0 = 6.69;
 static const double kAc = -0.022, kAn = 0.040, kAt = -0.0015; /* triaxial parts t(.) */
-/* PROPS(22..41) */
+/* PROPS(22..42) */
 enum { kNumParameters = SFFCAL_UMAT_NETWORK_NPROPS_MAX - SFFCAL_UMAT_NETWORK_PROP_PARAMETERS };
 
 /* x diag(-1, -1, 2) / 3 in the order 11, 22, 33, 12, 13, 23. */
@@ -31,7 +31,7 @@ static void axisymmetric(double x, double* props) {
   props[3] = props[4] = props[5] = 0.0;
 }
 
-/* youngs_and_parameters: E then the 20 parameters (PROPS 21..41). */
+/* youngs_and_parameters: E then the 21 parameters (PROPS 21..42). */
 static Point make_point(const double* youngs_and_parameters, int ntens, int nprops) {
   Point pt;
   memset(&pt, 0, sizeof pt);
@@ -147,8 +147,9 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
 
   /* The parameters added after the first version: without them in PROPS they take their value of
    * the model before them; another value changes an increment that sees them. PROPS(40), c_t: an
-   * extension increment; PROPS(41), c_l: a compression increment (Lambda grows, and Z with it). */
-  const int ct = SFFCAL_UMAT_NETWORK_PROP_PARAMETERS + 18, cl = ct + 1;
+   * extension increment; PROPS(41), c_l: a compression increment (Lambda grows, and Z with it);
+   * PROPS(42), n_kappa: the same (Lambda grows at another rate). */
+  const int ct = SFFCAL_UMAT_NETWORK_PROP_PARAMETERS + 18, cl = ct + 1, nk = ct + 2;
   const double extension[6] = {1e-3, 1e-3, 2e-3, 0, 0, 0}; /* tension positive: the axis unloads */
   const double compression[6] = {0, 0, -2e-3, 0, 0, 0};
   added_parameter_acts(youngs_and_parameters, ct, 1.0, 0.6, extension,
@@ -157,6 +158,9 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
   added_parameter_acts(youngs_and_parameters, cl, 0.0, 0.1, compression,
                        "NPROPS = 40 is c_l = 0; c_l = 0.1 in PROPS(41) changes a compression step, "
                        "|dS33| [Pa]");
+  added_parameter_acts(youngs_and_parameters, nk, 1.0, 0.3, compression,
+                       "NPROPS = 41 is n_kappa = 1; n_kappa = 0.3 in PROPS(42) changes a compression "
+                       "step, |dS33| [Pa]");
 
   /* The name chooses the entry in any case; another name goes to ACST, which refuses these
    * PROPS (its parameters, PROPS(8..22), would be the anisotropies and E here). */

@@ -72,7 +72,7 @@ struct FitOptions {
   int starts = 1;
   std::uint64_t seed = 1;
   /// Parameters held at their start values (parameter_names()), besides c_t without an extension
-  /// test and c_l without an undrained test, which are always held.
+  /// test and c_l and n_kappa without an undrained test, which are always held.
   std::vector<std::string> held;
   /// Fit along the DEM's strain paths first (the first stage), then on the predicted paths from its
   /// result; false: on the predicted paths from each start directly (docs/network-model.md,
@@ -100,14 +100,16 @@ Curve predict(const Parameters<double>& par, const TestData& test, const FitOpti
 /// RMS errors of a curve against its test: eta and volumetric strain over the rows after the
 /// first, the micro variables over the snapshots after the first (Lambda relative).
 struct Errors {
-  double eta = 0.0, volumetric = 0.0, p_ratio = 0.0;  ///< p_ratio: RMS (p - p_DEM)/p0
+  /// p_ratio: RMS of p/p0 - p_DEM/p0_DEM, each mean stress over its own initial one (the model's
+  /// stress is the SFF stress of the contacts, below the walls' in small specimens).
+  double eta = 0.0, volumetric = 0.0, p_ratio = 0.0;
   double coordination = 0.0, lambda = 0.0, a_c = 0.0, a_n = 0.0, a_t = 0.0;
 };
 Errors compare(const Curve& curve, const TestData& test);
 
 /// Standard errors of fitted parameters from the second stage's residuals r and Jacobian J at the
 /// solution, over the parameters inside their bounds and not held (one at a bound, c_t without an
-/// extension test or c_l without an undrained test, which the fit holds: NaN here):
+/// extension test or c_l and n_kappa without an undrained test, which the fit holds: NaN here):
 /// `independent`, s^2 (J^T J)^-1 with s^2 = |r|^2 / (n - k), as if the residuals were
 /// independent; `robust`, the sandwich of calibration::autocorrelation_robust_standard_errors
 /// (fit.h) with one series per test and residual kind (eta; epsilon_v or p; Z; Lambda; a_c; a_n;
@@ -148,8 +150,9 @@ struct ObjectiveValue {
 ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>& par,
                                   bool predicted, const FitOptions& options = {});
 
-/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t and c_l,
-/// added after the first version, from std::mt19937_64(seed + 1) and (seed + 2)): each
+/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t, c_l and
+/// n_kappa, added after the first version, from std::mt19937_64(seed + 1), (seed + 2) and
+/// (seed + 3)): each
 /// parameter with a positive range multiplied by a log-uniform factor within 3, each signed one
 /// moved uniformly by up to max(|x|, 1); clipped to the bounds.
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
@@ -161,7 +164,7 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// the model predicts (predict); where the second stage cannot start from the first's result (a
 /// predicted path leaves the admissible states) it starts from the start's own point. Residuals
 /// and their scales: FitOptions. Without an extension test c_t (the Lode factor) is held at its
-/// start value, without an undrained test c_l (N5b). Fills the standard errors at the solution.
+/// start value, without an undrained test c_l (N5b) and n_kappa (N6). Fills the standard errors at the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 

@@ -57,23 +57,30 @@ struct Parameters {
   /// d ln Z = c_l zeta d ln Lambda at a given structure, c_l in [0, 1]; 0, none, in files written
   /// before it.
   T c_l = unset();
+  /// The exponent of the normal force's stiffness in Lambda (N6): Lambda-rate = Lambda (Lambda /
+  /// Lambda_ref)^(n_kappa - 1) (kappa / 3) (...), n_kappa in [0, 1]; 1 (a stiffness proportional
+  /// to the force, ln Lambda linear in the strain) in files written before it, 0 for linear
+  /// contacts under affine deformation.
+  T n_kappa = unset();
 };
 
-inline constexpr int kNumParameters = 20;
-/// The parameters added after the first version come at the end of the order (c_t, c_l).
+inline constexpr int kNumParameters = 21;
+/// The parameters added after the first version come at the end of the order (c_t, c_l, n_kappa).
 inline constexpr int kNumFirstVersionParameters = 18;
 inline constexpr int kLodeFactorIndex = 18;
 inline constexpr int kLambdaGainIndex = 19;
+inline constexpr int kLambdaExponentIndex = 20;
 /// The value of an added parameter (index >= kNumFirstVersionParameters) in a parameter file or
 /// UMAT PROPS that does not give it: the model as it was before the parameter was added (c_t = 1,
-/// no Lode dependence; c_l = 0, no gain of contacts with the normal force).
-inline double value_if_absent(int index) { return index == kLodeFactorIndex ? 1.0 : 0.0; }
+/// no Lode dependence; c_l = 0, no gain of contacts with the normal force; n_kappa = 1, ln Lambda
+/// linear in the strain).
+inline double value_if_absent(int index) { return index == kLambdaGainIndex ? 0.0 : 1.0; }
 /// Names in the order of to_array/from_array.
 inline const std::array<const char*, kNumParameters>& parameter_names() {
   static const std::array<const char*, kNumParameters> names = {{
       "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
       "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z", "c_t",
-      "c_l"}};
+      "c_l",   "n_kappa"}};
   return names;
 }
 
@@ -81,7 +88,7 @@ template <typename T>
 std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
   return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
           p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z, p.c_t,
-          p.c_l}};
+          p.c_l,   p.n_kappa}};
 }
 
 template <typename T>
@@ -90,7 +97,7 @@ Parameters<T> from_array(const T* x) {
   p.kappa = x[0], p.z_c = x[1], p.zeta = x[2], p.k_z = x[3], p.c_v = x[4], p.a_cs = x[5];
   p.a_z = x[6], p.k_a = x[7], p.f_cs = x[8], p.f_z = x[9], p.k_f = x[10], p.t_cs = x[11];
   p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
-  p.n_z = x[17], p.c_t = x[18], p.c_l = x[19];
+  p.n_z = x[17], p.c_t = x[18], p.c_l = x[19], p.n_kappa = x[20];
   return p;
 }
 
@@ -103,7 +110,7 @@ inline Parameters<double> lower_bounds() {
   p.f_cs = 0.2, p.f_z = -5.0, p.k_f = 1.0;
   p.t_cs = 0.0, p.t_z = -1.0, p.k_t = 1.0;
   p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
-  p.c_t = 0.2, p.c_l = 0.0;
+  p.c_t = 0.2, p.c_l = 0.0, p.n_kappa = 0.0;
   return p;
 }
 
@@ -114,7 +121,7 @@ inline Parameters<double> upper_bounds() {
   p.f_cs = 3.0, p.f_z = 5.0, p.k_f = 3000.0;
   p.t_cs = 0.5, p.t_z = 1.0, p.k_t = 5000.0;
   p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
-  p.c_t = 2.0, p.c_l = 1.0;
+  p.c_t = 2.0, p.c_l = 1.0, p.n_kappa = 1.0;
   return p;
 }
 
@@ -215,7 +222,11 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   const T dilatancy_rate =
       par.d_z * excess * shear + par.d_a * ((s.fabric.array() * deviator.array()).sum() -
                                             par.a_cs * shear);
-  const T log_lambda_rate = par.kappa / T(3.0) * (volumetric + dilatancy_rate);  // Eq. N6
+  // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q); with
+  // n_kappa = 1 the factor is pow(x, 0) = 1 exactly, the law before n_kappa bit for bit.
+  using std::pow;
+  const T log_lambda_rate = pow(s.lambda / T(kLambdaReference), par.n_kappa - T(1.0)) *
+                            par.kappa / T(3.0) * (volumetric + dilatancy_rate);
   r.lambda = s.lambda * log_lambda_rate;
   // Eq. N5 with N5b: towards Z_c under shear, contacts added by compression and by the growth of
   // the normal forces, at most as fast as Z_c grows with them (c_l <= 1), so that a growing Lambda
@@ -254,16 +265,18 @@ State<T> integrate(const Parameters<T>& par, const State<T>& start, const Tensor
 /// Substeps so that no rate constant times a substep's strain exceeds `step_size` (0.05: RK4's
 /// local error then ~ 0.05^5 / 120 of the change, well below the DEM's noise), at the rate factor
 /// exp(n_r xi) of the state `at` (the start of the increment). The stiffest coupling may be ln
-/// Lambda's through Z_c(Lambda) and Z in the dilatancy, kappa |d_z| zeta (1 + c_l Z/Z_c) / 3.
+/// Lambda's through Z_c(Lambda) and Z in the dilatancy, kappa' |d_z| zeta (1 + c_l Z/Z_c) / 3,
+/// kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1) the stiffness of ln Lambda (N6).
 inline int substeps_for(const Parameters<double>& par, const State<double>& at,
                         double strain_norm, double step_size = 0.05) {
   const double critical = critical_coordination(par, at.lambda);
   const double excess = (at.coordination - critical) / critical;
   const double speed = std::exp(std::min(par.n_r * excess, 30.0));
+  const double kappa = par.kappa * std::pow(at.lambda / kLambdaReference, par.n_kappa - 1.0);
   const double stiffest = std::max(
       {speed * std::max({par.k_a, par.k_f, par.k_t}),
-       par.k_z * std::exp(std::min(par.n_z * excess, 30.0)), par.kappa / 3.0,
-       par.kappa / 3.0 *
+       par.k_z * std::exp(std::min(par.n_z * excess, 30.0)), kappa / 3.0,
+       kappa / 3.0 *
            (std::abs(par.d_z) * std::abs(par.zeta) * (1.0 + par.c_l * at.coordination / critical) +
             std::abs(par.d_a)),
        1.0});

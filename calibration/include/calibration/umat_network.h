@@ -22,6 +22,10 @@
  *   PROPS(41)      c_l, the coordination's gain with the normal force as a share of the critical
  *                  line's zeta, d ln Z = c_l zeta d ln Lambda (docs/network-model.md Eq. N5b);
  *                  0 (none) when NPROPS < 41.
+ *   PROPS(42)      n_kappa, the exponent of the normal force's stiffness in Lambda,
+ *                  d ln Lambda = (Lambda/Lambda_ref)^(n_kappa - 1) (kappa/3)(...)
+ *                  (docs/network-model.md Eq. N6); 1 (ln Lambda linear in the strain) when
+ *                  NPROPS < 42.
  * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
  * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
  * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
@@ -68,7 +72,7 @@ enum {
   SFFCAL_UMAT_NETWORK_PROP_PARAMETERS = 21,
   SFFCAL_UMAT_NETWORK_NPROPS_STATE = 20,
   SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39,  /* the first version's 18 parameters */
-  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 41   /* and c_t, c_l */
+  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 42   /* and c_t, c_l, n_kappa */
 };
 
 void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double* sse,
