@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Plots the contact-network model's predictions (`sffcal calibrate --model network -o DIR`, or
 bench/calibration/network_fit --out DIR) against the DEM:
-q/p, volumetric strain, Z, Lambda, a_c, a_n, a_t against axial strain. A test is a committed
+q/p, volumetric strain, Z, Lambda, a_c, a_n, a_t and p/p0 against axial strain (p/p0: each mean
+stress over its own start, as the fit compares them; the model's is the contacts' SFF stress, the
+DEM's the walls'). A test is a committed
 paper-size CSV pair by name (bench/reference/NAME_series.csv, NAME_sff.csv) or a run file (.h5).
 
 usage: plot_network.py DIR TEST... -o OUT.png
@@ -57,7 +59,12 @@ def main():
             ax.plot(d["axial_strain"], d[dem_column], ".", color=colour, ms=3)
             ax.set_xlabel("axial strain")
             ax.set_ylabel(label)
-    axes.flat[-1].axis("off")
+        ax = axes.flat[-1]
+        ax.plot(model["axial_strain"], [p / model["p"][0] for p in model["p"]], "-", color=colour)
+        s = dem["series"]
+        ax.plot(s["axial_strain"], [p / s["p"][0] for p in s["p"]], ".", color=colour, ms=3)
+        ax.set_xlabel("axial strain")
+        ax.set_ylabel("p/p0")
     axes.flat[0].legend(fontsize=8)
     fig.suptitle("contact-network model (lines) against the DEM (points)")
     fig.tight_layout()

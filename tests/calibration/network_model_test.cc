@@ -123,7 +123,7 @@ TEST(NetworkModel, TheNormalForceFollowsItsClosedFormForAnyStiffnessExponent) {
     EXPECT_GT(s.lambda, previous) << "n_kappa " << n;
     previous = s.lambda;
   }
-  // n_kappa = 1 is the law before it, bit for bit (its factor is pow(x, 0) = 1).
+  // n_kappa = 1 is the law before it, bit for bit (its factor is exp(0 ln x) = 1).
   p.n_kappa = 1.0;
   const State<double> r = rate(p, s0, d);
   EXPECT_EQ(r.lambda, s0.lambda * (p.kappa / 3.0 * d.trace()));
@@ -306,7 +306,7 @@ TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
   // its column vanishes (to rounding).
   Parameters<double> p = plausible();
   p.c_t = 0.7;
-  p.n_kappa = 0.4;  // n_kappa's column away from 1, where its factor is pow(x, 0)
+  p.n_kappa = 0.4;  // n_kappa's column away from 1, where its factor is exp(0)
   const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 25, 0.12);
   const TestData undrained = synthetic_test(p, "loose_undrained", 0.73, 4.4, 7e-4, false, 25, 0.08);
   const TestData extension =

@@ -222,10 +222,12 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   const T dilatancy_rate =
       par.d_z * excess * shear + par.d_a * ((s.fabric.array() * deviator.array()).sum() -
                                             par.a_cs * shear);
-  // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q); with
-  // n_kappa = 1 the factor is pow(x, 0) = 1 exactly, the law before n_kappa bit for bit.
-  using std::pow;
-  const T log_lambda_rate = pow(s.lambda / T(kLambdaReference), par.n_kappa - T(1.0)) *
+  // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q), the
+  // factor as exp((n_kappa - 1) ln x): for dual numbers one exp and one log where pow of two
+  // duals takes two pows and a log; with n_kappa = 1 it is exp(0) = 1 exactly, the law before
+  // n_kappa bit for bit.
+  using std::log;
+  const T log_lambda_rate = exp((par.n_kappa - T(1.0)) * log(s.lambda / T(kLambdaReference))) *
                             par.kappa / T(3.0) * (volumetric + dilatancy_rate);
   r.lambda = s.lambda * log_lambda_rate;
   // Eq. N5 with N5b: towards Z_c under shear, contacts added by compression and by the growth of
