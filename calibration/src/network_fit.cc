@@ -533,8 +533,8 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
                                                 std::uint64_t seed) {
   std::vector<Parameters<double>> points = {start};
   // Each parameter added after the first version draws from its own generator (seed + 1 for c_t,
-  // seed + 2 for c_l, seed + 3 for n_kappa), so that the parameters before it get the draws they always had (earlier
-  // fits are reproduced bit for bit).
+  // seed + 2 for c_l, seed + 3 for n_kappa), so that the parameters before it get the draws they
+  // always had (earlier fits are reproduced bit for bit).
   std::vector<std::mt19937_64> generators;
   for (int g = 0; g <= kNumParameters - kNumFirstVersionParameters; ++g)
     generators.emplace_back(seed + static_cast<std::uint64_t>(g));

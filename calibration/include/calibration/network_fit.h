@@ -164,7 +164,8 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// the model predicts (predict); where the second stage cannot start from the first's result (a
 /// predicted path leaves the admissible states) it starts from the start's own point. Residuals
 /// and their scales: FitOptions. Without an extension test c_t (the Lode factor) is held at its
-/// start value, without an undrained test c_l (N5b) and n_kappa (N6). Fills the standard errors at the solution.
+/// start value, without an undrained test c_l (N5b) and n_kappa (N6). Fills the standard errors at
+/// the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 
