@@ -170,6 +170,16 @@ T critical_coordination(const Parameters<T>& par, const T& lambda) {
   return par.z_c * pow(lambda / T(kLambdaReference), par.zeta);
 }
 
+/// (Lambda / Lambda_ref)^(n_kappa - 1), the factor of ln Lambda's stiffness kappa (Eq. N6), as
+/// exp((n_kappa - 1) ln x): for dual numbers one exp and one log where pow of two duals takes two
+/// pows and a log; with n_kappa = 1 it is exp(0) = 1 exactly, the law before n_kappa bit for bit.
+template <typename T>
+T stiffness_factor(const Parameters<T>& par, const T& lambda) {
+  using std::exp;
+  using std::log;
+  return exp((par.n_kappa - T(1.0)) * log(lambda / T(kLambdaReference)));
+}
+
 /// Eq. N2b: the Lode factor of a target along the shearing direction n = d_s / |d_s| (d_s the
 /// deviatoric strain rate, |d_s|^2 = shear_squared), g = 2c / ((1 + c) - (1 - c) cos 3 theta),
 /// cos 3 theta = sqrt(6) tr n^3 clamped to [-1, 1]: 1 in triaxial compression, c in extension
@@ -222,13 +232,9 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   const T dilatancy_rate =
       par.d_z * excess * shear + par.d_a * ((s.fabric.array() * deviator.array()).sum() -
                                             par.a_cs * shear);
-  // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q), the
-  // factor as exp((n_kappa - 1) ln x): for dual numbers one exp and one log where pow of two
-  // duals takes two pows and a log; with n_kappa = 1 it is exp(0) = 1 exactly, the law before
-  // n_kappa bit for bit.
-  using std::log;
-  const T log_lambda_rate = exp((par.n_kappa - T(1.0)) * log(s.lambda / T(kLambdaReference))) *
-                            par.kappa / T(3.0) * (volumetric + dilatancy_rate);
+  // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q).
+  const T log_lambda_rate =
+      stiffness_factor(par, s.lambda) * par.kappa / T(3.0) * (volumetric + dilatancy_rate);
   r.lambda = s.lambda * log_lambda_rate;
   // Eq. N5 with N5b: towards Z_c under shear, contacts added by compression and by the growth of
   // the normal forces, at most as fast as Z_c grows with them (c_l <= 1), so that a growing Lambda
@@ -274,7 +280,7 @@ inline int substeps_for(const Parameters<double>& par, const State<double>& at,
   const double critical = critical_coordination(par, at.lambda);
   const double excess = (at.coordination - critical) / critical;
   const double speed = std::exp(std::min(par.n_r * excess, 30.0));
-  const double kappa = par.kappa * std::pow(at.lambda / kLambdaReference, par.n_kappa - 1.0);
+  const double kappa = par.kappa * stiffness_factor(par, at.lambda);
   const double stiffest = std::max(
       {speed * std::max({par.k_a, par.k_f, par.k_t}),
        par.k_z * std::exp(std::min(par.n_z * excess, 30.0)), kappa / 3.0,
