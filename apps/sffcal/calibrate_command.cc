@@ -49,6 +49,23 @@ void refuse_shared_runs(const std::vector<calibration::TestData>& tests,
         throw std::runtime_error("'" + h.source + "' is both fitted and held out");
 }
 
+// The contact-network fit's first start: the parameter file's values (those it lacks at their
+// value_if_absent, the model before them), or the default start placed by the tests.
+calibration::network::Parameters<double> network_start(
+    const std::string& path, const std::vector<calibration::TestData>& tests) {
+  namespace net = calibration::network;
+  if (path.empty()) return net::default_start(tests);
+  double youngs_modulus = net::kDemYoungsModulus;
+  const net::Parameters<double> start = net::read_parameters_json(path, &youngs_modulus);
+  if (youngs_modulus != net::kDemYoungsModulus)
+    throw std::runtime_error("--start " + path + ": its youngs_modulus " +
+                             std::to_string(youngs_modulus) + " Pa is not the DEM's " +
+                             std::to_string(net::kDemYoungsModulus) +
+                             " Pa, which normalises Lambda in the fit");
+  std::printf("first start from %s\n", path.c_str());
+  return start;
+}
+
 int calibrate_network(const std::vector<std::string>& run_paths,
                       const CalibrateCommandOptions& options, const std::string& command_line) {
   namespace net = calibration::network;
@@ -65,8 +82,9 @@ int calibrate_network(const std::vector<std::string>& run_paths,
   net::check_unique_names(tests, held_out);
   for (const auto* list : {&tests, &held_out})
     for (const calibration::TestData& t : *list) net::initial_state(t);  // names a test without Z
+  const net::Parameters<double> first = network_start(options.start_file, tests);
   const auto start = std::chrono::steady_clock::now();
-  const net::FitResult result = net::fit(tests, net::default_start(), fit);
+  const net::FitResult result = net::fit(tests, first, fit);
   if (options.verbose) std::printf("%s\n", result.report.c_str());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -93,6 +111,8 @@ int calibrate_command(const std::vector<std::string>& run_paths,
     throw std::invalid_argument("--hold applies to --model network (ACST: --range)");
   if (options.predicted_only)
     throw std::invalid_argument("--predicted-only applies to --model network (ACST: --stages)");
+  if (!options.start_file.empty())
+    throw std::invalid_argument("--start applies to --model network (ACST: --range)");
   calibration::FitOptions fit;
   fit.stages = calibration::parse_stages(options.stages);
   fit.loss = calibration::parse_loss(options.loss);
@@ -125,7 +145,8 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
       .add_option("--model", options.model,
                   "acst: the ACST model's staged fit; network: the contact-network model "
                   "(docs/network-model.md; its runs need Z, Lambda and a_t in /analysis/sff; "
-                  "it reads --starts, --seed, --threads, --hold-out, --hold, --predicted-only, -v)")
+                  "it reads --starts, --seed, --threads, --hold-out, --hold, --predicted-only, "
+                  "--start, -v)")
       ->check(CLI::IsMember({"acst", "network"}))
       ->capture_default_str();
   calibrate
@@ -146,6 +167,12 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
                      "--model network: fit on the predicted paths from each start directly, "
                      "without the first stage along the DEM's strain paths (faster where an "
                      "undrained run makes that stage slow; docs/network-model.md)");
+  calibrate
+      .add_option("--start", options.start_file,
+                  "--model network: a contact-network parameter file (an earlier fit's "
+                  "parameters.json) whose values are the first start, the others drawn about it; "
+                  "parameters it lacks start as the model before them (e.g. d_psi = 0)")
+      ->check(CLI::ExistingFile);
   calibrate.add_option("--range", options.ranges,
                        "NAME=LOW:HIGH: the fit's search range of a parameter instead of the "
                        "default (docs/calibration.md, \"Bounds\"), e.g. n_d=0:60; repeatable");

@@ -32,6 +32,9 @@ struct CalibrateCommandOptions {
   std::vector<std::string> held_parameters;
   /// --model network: no first stage (network::FitOptions::first_stage = false).
   bool predicted_only = false;
+  /// --model network: a parameter file whose values are the first start (an earlier fit); empty:
+  /// network::default_start(tests).
+  std::string start_file;
   /// NAME=LOW:HIGH search ranges replacing the defaults (calibration::set_search_range).
   std::vector<std::string> ranges;
 };
@@ -40,8 +43,8 @@ struct CalibrateCommandOptions {
 inline const char* const kAcstOnlyOptions[] = {"--stages", "--loss", "--points",
                                                "--max-strain-step", "--range"};
 
-/// Adds --model, --threads, --hold-out, --hold, --predicted-only and --range to the calibrate
-/// subcommand.
+/// Adds --model, --threads, --hold-out, --hold, --predicted-only, --start and --range to the
+/// calibrate subcommand.
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options);
 
 /// Reads the run files (each needs /analysis/sff), calibrates the model options.model names

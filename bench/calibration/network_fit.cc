@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
     };
-    const net::FitResult result = net::fit(fit_tests, net::default_start(), options);
+    const net::FitResult result = net::fit(fit_tests, net::default_start(fit_tests), options);
     std::string command_line;
     for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
     std::printf("\n%s\n%s", result.report.c_str(),

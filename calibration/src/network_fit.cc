@@ -302,7 +302,10 @@ struct PathObjective {
         residual[n++] = (triaxial_part(s.tangential) - t.a_t[m]) / options.tangential_scale;
       }
     }
-    return true;
+    // A path can stay admissible while its stress or its derivatives overflow (an undrained path
+    // whose normal force runs away from a far start): such a point is unusable, not an error.
+    using std::isfinite;
+    return std::all_of(residual, residual + n, [](const T& r) { return isfinite(r); });
   }
 };
 
@@ -446,16 +449,40 @@ Parameters<double> default_start() {
   p.t_cs = 0.085, p.t_z = 0.1, p.k_t = 200.0;
   p.d_z = 3.0, p.d_a = 2.0, p.n_r = 0.0, p.n_z = 0.0;
   p.c_t = 1.0, p.c_l = 0.0, p.n_kappa = 1.0;
+  p.d_psi = 1.0, p.e_gamma = 0.8, p.lambda_e = 0.01;
+  return p;
+}
+
+Parameters<double> default_start(const std::vector<TestData>& tests) {
+  Parameters<double> p = default_start();
+  if (tests.empty()) return p;
+  // Each test near its critical state at its end: e_c(Lambda_end) = e_end (Eq. N7b).
+  double sum = 0.0;
+  for (const TestData& t : tests) {
+    const double e_end = t.void_ratio.empty()
+                             ? t.e0 - (1.0 + t.e0) * t.volumetric_strain.back()
+                             : t.void_ratio.back();
+    const double lambda_end = t.lambda.empty() ? kLambdaReference : t.lambda.back();
+    sum += e_end + p.lambda_e * std::log(lambda_end / kLambdaReference);
+  }
+  p.e_gamma = std::clamp(sum / static_cast<double>(tests.size()), lower_bounds().e_gamma,
+                         upper_bounds().e_gamma);
   return p;
 }
 
 namespace {
 
+// The span of the tests' initial mean stresses from which the critical void ratio line's slope is
+// fitted (held_parameters).
+constexpr double kPressureSpanForSlope = 1.5;
+
 // The parameters held at their start: those the options name, and those the tests cannot
 // determine: c_t (the Lode factor of Eq. N2b) without an extension test, c_l (Eq. N5b) and n_kappa
 // (N6) without an undrained one (drained tests barely see c_l: refits of synthetic drained tests
 // spread over a third of its range; n_kappa shapes Lambda's growth where the volume cannot relieve
-// it, and is held so that drained fits stay as they were). Sorted, each once.
+// it, and is held so that drained fits stay as they were), and lambda_e (N7b, the critical void
+// ratio line's slope) when the tests' initial mean stresses span less than a factor 1.5 (one
+// pressure: the line's position is seen, not its slope). Sorted, each once.
 std::vector<int> held_parameters(const std::vector<TestData>& tests, const FitOptions& options) {
   std::vector<int> held;
   for (const std::string& name : options.held) {
@@ -473,6 +500,10 @@ std::vector<int> held_parameters(const std::vector<TestData>& tests, const FitOp
     held.push_back(kLambdaGainIndex);
     held.push_back(kLambdaExponentIndex);
   }
+  const auto [least, most] = std::minmax_element(
+      tests.begin(), tests.end(), [](const TestData& a, const TestData& b) { return a.p0 < b.p0; });
+  if (!tests.empty() && !(most->p0 >= kPressureSpanForSlope * least->p0))
+    held.push_back(kCriticalSlopeIndex);
   std::sort(held.begin(), held.end());
   held.erase(std::unique(held.begin(), held.end()), held.end());
   return held;
@@ -533,8 +564,8 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
                                                 std::uint64_t seed) {
   std::vector<Parameters<double>> points = {start};
   // Each parameter added after the first version draws from its own generator (seed + 1 for c_t,
-  // seed + 2 for c_l, seed + 3 for n_kappa), so that the parameters before it get the draws they
-  // always had (earlier fits are reproduced bit for bit).
+  // seed + 2 for c_l, seed + 3 for n_kappa, seed + 4 to 6 for d_psi, e_gamma and lambda_e), so
+  // that the parameters before it get the draws they always had.
   std::vector<std::mt19937_64> generators;
   for (int g = 0; g <= kNumParameters - kNumFirstVersionParameters; ++g)
     generators.emplace_back(seed + static_cast<std::uint64_t>(g));
@@ -545,9 +576,13 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
     for (int i = 0; i < kNumParameters; ++i) {
       std::mt19937_64& random =
           generators[static_cast<std::size_t>(std::max(0, i - kNumFirstVersionParameters + 1))];
-      // Positive ranges: a factor of up to 3 either way; signed ones: +- max(|x|, 1).
-      y[i] = lo[i] >= 0.0 && x[i] > 0.0 ? x[i] * std::exp(std::log(3.0) * unit(random))
-                                        : x[i] + unit(random) * std::max(std::abs(x[i]), 1.0);
+      // Positive ranges: a factor of up to 3 either way; signed ones: +- max(|x|, 1); the critical
+      // void ratio e_gamma, whose start comes from the data (default_start(tests)): +- 0.1.
+      if (i == kCriticalVoidRatioIndex)
+        y[i] = x[i] + 0.1 * unit(random);
+      else
+        y[i] = lo[i] >= 0.0 && x[i] > 0.0 ? x[i] * std::exp(std::log(3.0) * unit(random))
+                                          : x[i] + unit(random) * std::max(std::abs(x[i]), 1.0);
       y[i] = std::clamp(y[i], lo[i], hi[i]);
     }
     points.push_back(from_array(y.data()));
@@ -652,14 +687,19 @@ StandardErrors standard_errors(const std::vector<TestData>& tests, const Paramet
   StandardErrors result;
   result.independent.fill(kNaN);
   result.robust.fill(kNaN);
-  // The parameters inside their bounds (a fit that stopped at a bound held it there).
+  // The parameters inside their bounds (a fit that stopped at a bound held it there). With d_psi
+  // at its bound 0 there is no critical void ratio line, and its e_gamma and lambda_e do nothing
+  // (their columns are zero): none of the three has an error then.
   const auto x = to_array(par), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
-  const std::vector<int> held = held_parameters(tests, options);
+  auto inside = [&](int i) {
+    return x[i] > lo[i] + 1e-9 * (hi[i] - lo[i]) && x[i] < hi[i] - 1e-9 * (hi[i] - lo[i]);
+  };
+  std::vector<int> held = held_parameters(tests, options);
+  if (!inside(kStateDilatancyIndex))
+    held.insert(held.end(), {kCriticalVoidRatioIndex, kCriticalSlopeIndex});
   std::vector<int> free;
   for (int i = 0; i < kNumParameters; ++i)
-    if (x[i] > lo[i] + 1e-9 * (hi[i] - lo[i]) && x[i] < hi[i] - 1e-9 * (hi[i] - lo[i]) &&
-        std::find(held.begin(), held.end(), i) == held.end())
-      free.push_back(i);
+    if (inside(i) && std::find(held.begin(), held.end(), i) == held.end()) free.push_back(i);
   // Residuals and Jacobian rows regrouped into series: per test, one per residual kind, each in
   // strain order.
   std::vector<double> residuals, jacobian;

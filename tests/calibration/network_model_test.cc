@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -24,6 +26,7 @@ Parameters<double> plausible() {
   Parameters<double> p = default_start();
   p.kappa = 80.0, p.c_v = 4.0, p.a_z = 0.9, p.k_a = 15.0, p.f_z = 2.0, p.t_z = 0.2;
   p.d_z = 2.3, p.d_a = 0.5, p.n_r = 1.3, p.n_z = 4.0, p.k_z = 4.0, p.c_l = 0.5;
+  p.d_psi = 3.0, p.e_gamma = 0.66, p.lambda_e = 0.02;
   return p;
 }
 
@@ -41,11 +44,11 @@ State<double> random_state(std::mt19937_64& random) {
           random_deviator(random, 0.05)};
 }
 
-// The state at the critical state of triaxial compression: Z = Z_c(Lambda) and each anisotropy at
-// its critical norm along z.
+// The state at the critical state of triaxial compression: e = e_c(Lambda), Z = Z_c(Lambda) and
+// each anisotropy at its critical norm along z.
 State<double> critical_state(const Parameters<double>& p, double lambda) {
-  return {0.7, critical_coordination(p, lambda), lambda, axisymmetric(p.a_cs),
-          axisymmetric(p.f_cs), axisymmetric(p.t_cs)};
+  return {critical_void_ratio(p, lambda), critical_coordination(p, lambda), lambda,
+          axisymmetric(p.a_cs), axisymmetric(p.f_cs), axisymmetric(p.t_cs)};
 }
 
 Tensor<double> isochoric_compression(double size) {
@@ -144,6 +147,43 @@ TEST(NetworkModel, TheCriticalStateIsStationaryUnderIsochoricShear) {
   State<double> s = critical_state(p, 1e-3);
   s.coordination += 0.3;
   EXPECT_GT(largest_change(rate(p, s, isochoric_compression(1.0))), 1e-3);
+}
+
+TEST(NetworkModel, TheCriticalVoidRatioLineDrivesTheDilatancy) {
+  // N7b: on the critical network (Z = Z_c, anisotropies at their critical norms) a void ratio
+  // off the line e_c(Lambda) = e_gamma - lambda_e ln(Lambda / Lambda_ref) leaves D = d_psi (e_c - e)
+  // alone, so isochoric shear at eps_q-rate 1 moves Lambda at Lambda (Lambda / Lambda_ref)^(n_kappa -
+  // 1) (kappa / 3) d_psi (e_c - e) (N6) and nothing else but Z through c_l (N5b).
+  Parameters<double> p = plausible();
+  p.n_kappa = 0.4;
+  for (double lambda : {6e-4, 1.8e-3}) {
+    State<double> s = critical_state(p, lambda);
+    EXPECT_NEAR(s.void_ratio, p.e_gamma - p.lambda_e * std::log(lambda / kLambdaReference), 1e-15);
+    for (double offset : {0.05, -0.03}) {
+      s.void_ratio = critical_void_ratio(p, lambda) + offset;
+      const State<double> r = rate(p, s, isochoric_compression(1.0));
+      const double log_rate = std::pow(lambda / kLambdaReference, p.n_kappa - 1.0) * p.kappa /
+                              3.0 * p.d_psi * (-offset);
+      EXPECT_NEAR(r.lambda, lambda * log_rate, 1e-12 * lambda * std::abs(log_rate));
+      EXPECT_NEAR(r.coordination, p.c_l * p.zeta * s.coordination * log_rate,
+                  1e-12 * s.coordination * std::abs(log_rate));
+      // Looser than the line the network loses normal force (a drained specimen contracts to
+      // keep its stress), denser it gains it.
+      EXPECT_EQ(r.lambda < 0.0, offset > 0.0);
+      EXPECT_LT(r.fabric.norm() + r.normal.norm() + r.tangential.norm(), 1e-12);
+    }
+  }
+  // d_psi = 0 is the model before the line, bit for bit: e_gamma and lambda_e do nothing.
+  std::mt19937_64 random(13);
+  const State<double> s = random_state(random);
+  const Tensor<double> d = random_deviator(random, 1.0) + 0.1 * Tensor<double>::Identity();
+  p.d_psi = 0.0;
+  Parameters<double> other = p;
+  other.e_gamma = 1.3, other.lambda_e = 0.2;
+  const State<double> r = rate(p, s, d), r_other = rate(other, s, d);
+  EXPECT_EQ(r.lambda, r_other.lambda);
+  EXPECT_EQ(r.coordination, r_other.coordination);
+  EXPECT_EQ(substeps_for(p, s, 0.01), substeps_for(other, s, 0.01));
 }
 
 TEST(NetworkModel, TheLodeFactorIsOneInCompressionAndCtInExtension) {
@@ -299,6 +339,34 @@ TEST(NetworkModel, TheDrainedPredictionHoldsTheLateralStressAndDilatesWhenOverCo
   EXPECT_GT(predict(p, loose).volumetric_strain.back(), 0.0);  // Z < Z_c: it contracts
 }
 
+TEST(NetworkModel, DrainedTestsEndOnTheCriticalVoidRatioLine) {
+  // A dense and a loose specimen sheared drained far into the critical state end at the void
+  // ratio of the line at their normal force (N7b; N8: D = 0 with Z = Z_c and the anisotropies
+  // critical needs e = e_c); default_start(tests) places the line through the tests' ends. Without
+  // the line (d_psi = 0) the ends are wherever the path leaves them.
+  Parameters<double> p = plausible();
+  // The coordination at Z_c within the test (N5), so that D's d_z term vanishes, and the void
+  // ratio's relaxation to the line, (1 + e) d_psi per unit shear strain, fast against its 0.6.
+  p.k_z = 30.0, p.d_psi = 6.0;
+  const std::vector<TestData> tests = {
+      synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 81, 0.6),
+      synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 81, 0.6)};
+  for (const TestData& t : tests) {
+    const double e_c = critical_void_ratio(p, t.lambda.back());
+    EXPECT_NEAR(t.void_ratio.back(), e_c, 2e-3) << t.name;
+    // Both had far to go: the dense one dilates, the loose one contracts onto the line.
+    EXPECT_GT(std::abs(t.e0 - e_c), 0.04) << t.name;
+  }
+  EXPECT_NEAR(default_start(tests).e_gamma, p.e_gamma, 2e-3);
+  p.d_psi = 0.0;
+  double largest = 0.0;
+  for (const TestData& t : {synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 81, 0.6),
+                            synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 81, 0.6)}) {
+    largest = std::max(largest, std::abs(t.void_ratio.back() - critical_void_ratio(p, t.lambda.back())));
+  }
+  EXPECT_GT(largest, 0.02);
+}
+
 TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
   // Past the peak, on the predicted drained path the derivatives come through the implicit
   // function theorem at each increment.
@@ -350,9 +418,10 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
   auto start = to_array(truth);
   // c_t is held without an extension test (compression does not see it), c_l and n_kappa without
   // an undrained one.
-  const double factors[kNumParameters] = {1.2, 0.95, 1.2, 0.8, 1.1, 0.95, 1.2,
-                                          1.15, 1.05, 0.9, 1.1, 1.05, 0.9, 1.2,
-                                          1.1, 1.2, 0.9, 1.1, 1.0, 1.0, 1.0};
+  // At one pressure lambda_e is held too.
+  const double factors[kNumParameters] = {1.2, 0.95, 1.2, 0.8, 1.1, 0.95, 1.2, 1.15,
+                                          1.05, 0.9, 1.1, 1.05, 0.9, 1.2, 1.1, 1.2,
+                                          0.9, 1.1, 1.0, 1.0, 1.0, 1.2, 0.97, 1.0};
   for (int i = 0; i < kNumParameters; ++i) start[i] *= factors[i];
   FitOptions options;
   options.max_iterations = 300;
@@ -389,6 +458,29 @@ TestData with_noise(TestData t, double size, std::mt19937_64& random) {
   return t;
 }
 
+// The parameters a fit of drained compressions at one pressure holds: c_t, c_l, n_kappa, lambda_e.
+const std::array<int, 4> kHeldByTwoDrainedTests = {kLodeFactorIndex, kLambdaGainIndex,
+                                                   kLambdaExponentIndex, kCriticalSlopeIndex};
+
+TEST(NetworkModel, TheCriticalLinesSlopeIsFittedFromTwoPressures) {
+  // lambda_e is held (no standard error) for tests at one pressure and fitted with a second one
+  // (initial mean stresses a factor 1.5 or more apart).
+  const Parameters<double> p = plausible();
+  std::vector<TestData> tests = {synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
+                                 synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+  ASSERT_LT(tests[0].p0, 1.5 * tests[1].p0);
+  StandardErrors one = standard_errors(tests, p);
+  ASSERT_TRUE(one.estimated);
+  EXPECT_TRUE(std::isnan(one.independent[kCriticalSlopeIndex]));
+  EXPECT_TRUE(std::isfinite(one.independent[kStateDilatancyIndex]));
+  EXPECT_TRUE(std::isfinite(one.independent[kCriticalVoidRatioIndex]));
+  tests.push_back(synthetic_test(p, "dense_high", 0.57, 6.8, 1e-3, true, 21, 0.15));
+  ASSERT_GT(tests[2].p0, 1.5 * tests[0].p0);
+  StandardErrors two = standard_errors(tests, p);
+  ASSERT_TRUE(two.estimated);
+  EXPECT_TRUE(std::isfinite(two.independent[kCriticalSlopeIndex]));
+}
+
 TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
   // Refits to independent noise realisations of the same two synthetic tests: the spread of their
   // estimates is what the standard errors claim. With 12 refits a sample standard deviation is
@@ -397,6 +489,7 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
   // few snapshots (at the usual 200 it is there by the first, and k_t is not identified).
   Parameters<double> truth = plausible();
   truth.k_t = 40.0;
+  truth.d_psi = 6.0;
   const std::vector<TestData> clean = {
       synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
       synthetic_test(truth, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
@@ -410,13 +503,14 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     for (const TestData& t : clean) noisy.push_back(with_noise(t, kNoise, random));
     const FitResult result = fit(noisy, truth);
     ASSERT_TRUE(result.errors.estimated);
-    // c_t, held without an extension test, and c_l and n_kappa, held without an undrained one,
-    // have none.
-    for (int held : {kLodeFactorIndex, kLambdaGainIndex, kLambdaExponentIndex})
+    // c_t, held without an extension test, c_l and n_kappa, held without an undrained one, and
+    // lambda_e, held at one pressure, have none.
+    for (int held : kHeldByTwoDrainedTests)
       EXPECT_TRUE(std::isnan(result.errors.independent[held])) << parameter_names()[held];
     EXPECT_EQ(result.parameters.c_t, truth.c_t);
     EXPECT_EQ(result.parameters.c_l, truth.c_l);
     EXPECT_EQ(result.parameters.n_kappa, truth.n_kappa);
+    EXPECT_EQ(result.parameters.lambda_e, truth.lambda_e);
     estimates.push_back(to_array(result.parameters));
     for (int i = 0; i < kNumParameters; ++i) {
       mean_error[i] += result.errors.independent[i] / kRefits;
@@ -424,9 +518,9 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     }
   }
   double log_sum = 0.0;
-  const int estimated = kNumParameters - 3;  // all but c_t, c_l and n_kappa
+  const int estimated = kNumParameters - static_cast<int>(kHeldByTwoDrainedTests.size());
   for (int i = 0; i < kNumParameters; ++i) {
-    if (i == kLodeFactorIndex || i == kLambdaGainIndex || i == kLambdaExponentIndex) continue;
+    if (std::count(kHeldByTwoDrainedTests.begin(), kHeldByTwoDrainedTests.end(), i)) continue;
     double mean = 0.0, variance = 0.0;
     for (const auto& x : estimates) mean += x[i] / kRefits;
     for (const auto& x : estimates) variance += (x[i] - mean) * (x[i] - mean) / (kRefits - 1);
@@ -552,7 +646,7 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
             (i == 7 ? std::string("-1") : std::to_string(x[i])) + ", \"unit\": \"1\"}";
   expect_error(text + "}}", "k_a");  // out of range
   expect_error("{\"model\": ", "not valid JSON");
-  // A file of the first version (no c_t, c_l, n_kappa) reads with c_t = 1, no Lode dependence,
+  // A file of the first version (no c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e) reads with c_t = 1, no Lode dependence,
   // c_l = 0, no gain of contacts with the normal force, and n_kappa = 1, ln Lambda linear in the
   // strain; an added parameter out of its range is refused by name.
   std::string first_version = R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8,
@@ -567,6 +661,12 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
   EXPECT_EQ(read_parameters_json(path).c_t, 1.0);
   EXPECT_EQ(read_parameters_json(path).c_l, 0.0);
   EXPECT_EQ(read_parameters_json(path).n_kappa, 1.0);
+  // ... and d_psi = 0, no critical void ratio line (e_gamma and lambda_e then do nothing).
+  EXPECT_EQ(read_parameters_json(path).d_psi, 0.0);
+  EXPECT_EQ(read_parameters_json(path).e_gamma, 0.8);
+  EXPECT_EQ(read_parameters_json(path).lambda_e, 0.0);
+  expect_error(first_version + R"(, "d_psi": {"value": -1, "unit": "1"}}})", "d_psi");
+  expect_error(first_version + R"(, "e_gamma": {"value": 0.1, "unit": "1"}}})", "e_gamma");
   expect_error(first_version + R"(, "c_t": {"value": 5, "unit": "1"}}})", "c_t");
   expect_error(first_version + R"(, "c_l": {"value": -0.1, "unit": "1"}}})", "c_l");
   expect_error(first_version + R"(, "n_kappa": {"value": 1.5, "unit": "1"}}})", "n_kappa");

@@ -2,7 +2,8 @@
 # `sffcal calibrate --model network` as a user calls it (issue 19): two 500-clump runs fitted and a
 # third held back (one start) write the contact-network parameter file with the fit's record and
 # standard errors, a curve per test and the summary; `sffcal fe-check` takes that parameter file;
-# an ACST-only option and a run without the network's columns are refused by name.
+# a refit starts from it (--start); an ACST-only option and a run without the network's columns are
+# refused by name.
 # Usage: calibrate_network_test.sh SFFCAL_BINARY PYTHON (with h5py).
 set -u
 sffcal=$1
@@ -35,7 +36,7 @@ check "parameters.json: the contact-network model, standard errors, inputs and e
 import json, math, sys
 d = json.load(open(sys.argv[1]))
 assert d["model"] == "contact_network"
-assert len(d["parameters"]) == 21
+assert len(d["parameters"]) == 24
 errors = d["fit"]["standard_errors"]
 assert sum(1 for v in errors.values() if v is not None and math.isfinite(v) and v > 0) >= 12
 assert [i["fitted"] for i in d["provenance"]["inputs"]] == [True, True, False]
@@ -64,7 +65,28 @@ else
   failures=$((failures + 1))
 fi
 
+# --start: the first start from the fit's own parameter file; on the predicted paths directly
+# the fit can only go down from there.
+if "$sffcal" calibrate --model network "$runs/iso_dense_100kPa.h5" "$runs/iso_loose_100kPa.h5" \
+    --start fit/parameters.json --predicted-only --starts 1 -o again > again.log 2>&1; then
+  check "--start: said, and the refit ends at or below the first fit's cost" \
+    "$python" -c "import json, sys
+first = json.load(open('fit/parameters.json'))['fit']['final_cost']
+again = json.load(open('again/parameters.json'))['fit']['final_cost']
+print(first, again)
+sys.exit(not (again <= first * (1 + 1e-9) and 'first start from fit/parameters.json' in open('again.log').read()))"
+else
+  echo "FAIL calibrate --model network --start exits 0:"; cat again.log
+  failures=$((failures + 1))
+fi
+
 # Refusals, each naming the cause.
+out=$("$sffcal" calibrate "$runs/iso_dense_100kPa.h5" --start fit/parameters.json -o refused 2>&1)
+if [ $? -ne 0 ] && [[ $out == *"--start applies to --model network"* ]]; then
+  echo "ok   --start with the ACST fit is refused by name"
+else
+  echo "FAIL --start with ACST: $out"; failures=$((failures + 1))
+fi
 out=$("$sffcal" calibrate "$runs/iso_dense_100kPa.h5" --predicted-only -o refused 2>&1)
 if [ $? -ne 0 ] && [[ $out == *"--predicted-only applies to --model network"* ]]; then
   echo "ok   --predicted-only with the ACST fit is refused by name"

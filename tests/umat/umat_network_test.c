@@ -21,7 +21,7 @@
 static const double kP0 = 100e3; /* initial isotropic stress [Pa] */
 static const double kE0 = 0.574, kZ0 = 6.69;
 static const double kAc = -0.022, kAn = 0.040, kAt = -0.0015; /* triaxial parts t(.) */
-/* PROPS(22..42) */
+/* PROPS(22..45) */
 enum { kNumParameters = SFFCAL_UMAT_NETWORK_NPROPS_MAX - SFFCAL_UMAT_NETWORK_PROP_PARAMETERS };
 
 /* x diag(-1, -1, 2) / 3 in the order 11, 22, 33, 12, 13, 23. */
@@ -31,7 +31,7 @@ static void axisymmetric(double x, double* props) {
   props[3] = props[4] = props[5] = 0.0;
 }
 
-/* youngs_and_parameters: E then the 21 parameters (PROPS 21..42). */
+/* youngs_and_parameters: E then the 24 parameters (PROPS 21..45). */
 static Point make_point(const double* youngs_and_parameters, int ntens, int nprops) {
   Point pt;
   memset(&pt, 0, sizeof pt);
@@ -161,6 +161,21 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
   added_parameter_acts(youngs_and_parameters, nk, 1.0, 0.3, compression,
                        "NPROPS = 41 is n_kappa = 1; n_kappa = 0.3 in PROPS(42) changes a compression "
                        "step, |dS33| [Pa]");
+  /* PROPS(43..45), the critical void ratio line (Eq. N7b): d_psi in a compression step (it shears
+   * the network), then, with d_psi given, e_gamma and lambda_e. */
+  const int dpsi = ct + 3, egamma = ct + 4, lambdae = ct + 5;
+  added_parameter_acts(youngs_and_parameters, dpsi, 0.0, 2.0, compression,
+                       "NPROPS = 42 is d_psi = 0; d_psi = 2 in PROPS(43) changes a compression step, "
+                       "|dS33| [Pa]");
+  double with_line[1 + kNumParameters];
+  memcpy(with_line, youngs_and_parameters, sizeof with_line);
+  with_line[dpsi - SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS] = 2.0;
+  added_parameter_acts(with_line, egamma, 0.8, 0.6, compression,
+                       "NPROPS = 43 is e_gamma = 0.8; e_gamma = 0.6 in PROPS(44) changes a "
+                       "compression step, |dS33| [Pa]");
+  added_parameter_acts(with_line, lambdae, 0.0, 0.05, compression,
+                       "NPROPS = 44 is lambda_e = 0; lambda_e = 0.05 in PROPS(45) changes a "
+                       "compression step, |dS33| [Pa]");
 
   /* The name chooses the entry in any case; another name goes to ACST, which refuses these
    * PROPS (its parameters, PROPS(8..22), would be the anisotropies and E here). */

@@ -72,7 +72,8 @@ struct FitOptions {
   int starts = 1;
   std::uint64_t seed = 1;
   /// Parameters held at their start values (parameter_names()), besides c_t without an extension
-  /// test and c_l and n_kappa without an undrained test, which are always held.
+  /// test, c_l and n_kappa without an undrained test, and lambda_e when the tests' initial mean
+  /// stresses span less than a factor 1.5, which are always held.
   std::vector<std::string> held;
   /// Fit along the DEM's strain paths first (the first stage), then on the predicted paths from its
   /// result; false: on the predicted paths from each start directly (docs/network-model.md,
@@ -108,8 +109,8 @@ struct Errors {
 Errors compare(const Curve& curve, const TestData& test);
 
 /// Standard errors of fitted parameters from the second stage's residuals r and Jacobian J at the
-/// solution, over the parameters inside their bounds and not held (one at a bound, c_t without an
-/// extension test or c_l and n_kappa without an undrained test, which the fit holds: NaN here):
+/// solution, over the parameters inside their bounds and not held (one at a bound, one the fit
+/// holds, FitOptions::held, and e_gamma and lambda_e with d_psi = 0, no line: NaN here):
 /// `independent`, s^2 (J^T J)^-1 with s^2 = |r|^2 / (n - k), as if the residuals were
 /// independent; `robust`, the sandwich of calibration::autocorrelation_robust_standard_errors
 /// (fit.h) with one series per test and residual kind (eta; epsilon_v or p; Z; Lambda; a_c; a_n;
@@ -135,6 +136,11 @@ struct FitResult {
 
 /// The starting values of the fit (its bounds: lower_bounds, upper_bounds in network_model.h).
 Parameters<double> default_start();
+/// default_start() with the critical void ratio line placed through the tests' ends (Eq. N7b):
+/// e_gamma the mean over the tests of e_end + lambda_e ln(Lambda_end / Lambda_ref), e_end the void
+/// ratio of the last series row and Lambda_end the last snapshot's, clipped to its bounds (a test
+/// sheared to its end is near its critical state).
+Parameters<double> default_start(const std::vector<TestData>& tests);
 
 /// The fit's residuals of one test and their Jacobian by the parameters (forward-mode Jets; on
 /// the predicted drained path through the implicit function theorem at each increment's solved
@@ -150,11 +156,11 @@ struct ObjectiveValue {
 ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>& par,
                                   bool predicted, const FitOptions& options = {});
 
-/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t, c_l and
-/// n_kappa, added after the first version, from std::mt19937_64(seed + 1), (seed + 2) and
-/// (seed + 3)): each
-/// parameter with a positive range multiplied by a log-uniform factor within 3, each signed one
-/// moved uniformly by up to max(|x|, 1); clipped to the bounds.
+/// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t, c_l,
+/// n_kappa, d_psi, e_gamma and lambda_e, added after the first version, from std::mt19937_64(seed +
+/// 1) to (seed + 6)): each parameter with a positive range multiplied by a log-uniform factor
+/// within 3, each signed one moved uniformly by up to max(|x|, 1), e_gamma (a void ratio placed by
+/// the data) by up to 0.1; clipped to the bounds.
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
                                                 std::uint64_t seed);
 
@@ -164,8 +170,8 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// the model predicts (predict); where the second stage cannot start from the first's result (a
 /// predicted path leaves the admissible states) it starts from the start's own point. Residuals
 /// and their scales: FitOptions. Without an extension test c_t (the Lode factor) is held at its
-/// start value, without an undrained test c_l (N5b) and n_kappa (N6). Fills the standard errors at
-/// the solution.
+/// start value, without an undrained test c_l (N5b) and n_kappa (N6), at one pressure lambda_e
+/// (N7b). Fills the standard errors at the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 

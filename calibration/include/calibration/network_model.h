@@ -62,25 +62,45 @@ struct Parameters {
   /// to the force, ln Lambda linear in the strain) in files written before it, 0 for linear
   /// contacts under affine deformation.
   T n_kappa = unset();
+  /// The critical void ratio line in the dilatancy (N7b): D gains d_psi (e_c - e), e_c = e_gamma -
+  /// lambda_e ln(Lambda / Lambda_ref); d_psi = 0 (no anchor in the void ratio) in files written
+  /// before it.
+  T d_psi = unset(), e_gamma = unset(), lambda_e = unset();
 };
 
-inline constexpr int kNumParameters = 21;
-/// The parameters added after the first version come at the end of the order (c_t, c_l, n_kappa).
+inline constexpr int kNumParameters = 24;
+/// The parameters added after the first version come at the end of the order (c_t, c_l, n_kappa,
+/// d_psi, e_gamma, lambda_e).
 inline constexpr int kNumFirstVersionParameters = 18;
 inline constexpr int kLodeFactorIndex = 18;
 inline constexpr int kLambdaGainIndex = 19;
 inline constexpr int kLambdaExponentIndex = 20;
+inline constexpr int kStateDilatancyIndex = 21;
+inline constexpr int kCriticalVoidRatioIndex = 22;
+inline constexpr int kCriticalSlopeIndex = 23;
 /// The value of an added parameter (index >= kNumFirstVersionParameters) in a parameter file or
 /// UMAT PROPS that does not give it: the model as it was before the parameter was added (c_t = 1,
 /// no Lode dependence; c_l = 0, no gain of contacts with the normal force; n_kappa = 1, ln Lambda
-/// linear in the strain).
-inline double value_if_absent(int index) { return index == kLambdaGainIndex ? 0.0 : 1.0; }
+/// linear in the strain; d_psi = 0, no critical void ratio line, whose e_gamma and lambda_e then
+/// do nothing: 0.8 and 0, values within their bounds).
+inline double value_if_absent(int index) {
+  switch (index) {
+    case kLambdaGainIndex:
+    case kStateDilatancyIndex:
+    case kCriticalSlopeIndex:
+      return 0.0;
+    case kCriticalVoidRatioIndex:
+      return 0.8;
+    default:
+      return 1.0;
+  }
+}
 /// Names in the order of to_array/from_array.
 inline const std::array<const char*, kNumParameters>& parameter_names() {
   static const std::array<const char*, kNumParameters> names = {{
       "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
       "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z", "c_t",
-      "c_l",   "n_kappa"}};
+      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e"}};
   return names;
 }
 
@@ -88,7 +108,7 @@ template <typename T>
 std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
   return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
           p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z, p.c_t,
-          p.c_l,   p.n_kappa}};
+          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e}};
 }
 
 template <typename T>
@@ -98,6 +118,7 @@ Parameters<T> from_array(const T* x) {
   p.a_z = x[6], p.k_a = x[7], p.f_cs = x[8], p.f_z = x[9], p.k_f = x[10], p.t_cs = x[11];
   p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
   p.n_z = x[17], p.c_t = x[18], p.c_l = x[19], p.n_kappa = x[20];
+  p.d_psi = x[21], p.e_gamma = x[22], p.lambda_e = x[23];
   return p;
 }
 
@@ -111,6 +132,7 @@ inline Parameters<double> lower_bounds() {
   p.t_cs = 0.0, p.t_z = -1.0, p.k_t = 1.0;
   p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
   p.c_t = 0.2, p.c_l = 0.0, p.n_kappa = 0.0;
+  p.d_psi = 0.0, p.e_gamma = 0.3, p.lambda_e = 0.0;
   return p;
 }
 
@@ -122,6 +144,7 @@ inline Parameters<double> upper_bounds() {
   p.t_cs = 0.5, p.t_z = 1.0, p.k_t = 5000.0;
   p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
   p.c_t = 2.0, p.c_l = 1.0, p.n_kappa = 1.0;
+  p.d_psi = 30.0, p.e_gamma = 1.5, p.lambda_e = 0.3;
   return p;
 }
 
@@ -168,6 +191,16 @@ template <typename T>
 T critical_coordination(const Parameters<T>& par, const T& lambda) {
   using std::pow;
   return par.z_c * pow(lambda / T(kLambdaReference), par.zeta);
+}
+
+/// e_c(Lambda) = e_gamma - lambda_e ln(Lambda / Lambda_ref), the critical void ratio line of the
+/// dilatancy (Eq. N7b): a line in e - ln p, as the classical critical state line, written in the
+/// network's own normal force (p is proportional to Z Lambda / (1 + e), and at the critical state
+/// Z = Z_c(Lambda)).
+template <typename T>
+T critical_void_ratio(const Parameters<T>& par, const T& lambda) {
+  using std::log;
+  return par.e_gamma - par.lambda_e * log(lambda / T(kLambdaReference));
 }
 
 /// (Lambda / Lambda_ref)^(n_kappa - 1), the factor of ln Lambda's stiffness kappa (Eq. N6), as
@@ -228,10 +261,12 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   const T g = lode_factor(par.c_t, deviator, shear_squared);
   r.tangential = towards(g * par.t_cs, g * par.t_z, par.k_t, s.tangential);
   // Eq. N7: the dilatancy times the shear rate; A:d_s = a_d eps_q-rate, a_d the fabric's norm
-  // along the shear direction.
+  // along the shear direction. N7b: and the distance to the critical void ratio, so that a loose
+  // network's contraction stops at its line (d_psi = 0: none, the model before it bit for bit).
   const T dilatancy_rate =
-      par.d_z * excess * shear + par.d_a * ((s.fabric.array() * deviator.array()).sum() -
-                                            par.a_cs * shear);
+      par.d_z * excess * shear +
+      par.d_a * ((s.fabric.array() * deviator.array()).sum() - par.a_cs * shear) +
+      par.d_psi * (critical_void_ratio(par, s.lambda) - s.void_ratio) * shear;
   // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q).
   const T log_lambda_rate =
       stiffness_factor(par, s.lambda) * par.kappa / T(3.0) * (volumetric + dilatancy_rate);
@@ -273,8 +308,9 @@ State<T> integrate(const Parameters<T>& par, const State<T>& start, const Tensor
 /// Substeps so that no rate constant times a substep's strain exceeds `step_size` (0.05: RK4's
 /// local error then ~ 0.05^5 / 120 of the change, well below the DEM's noise), at the rate factor
 /// exp(n_r xi) of the state `at` (the start of the increment). The stiffest coupling may be ln
-/// Lambda's through Z_c(Lambda) and Z in the dilatancy, kappa' |d_z| zeta (1 + c_l Z/Z_c) / 3,
-/// kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1) the stiffness of ln Lambda (N6).
+/// Lambda's through Z_c(Lambda), Z and e_c(Lambda) in the dilatancy, kappa' (|d_z| zeta (1 + c_l
+/// Z/Z_c) + |d_a| + d_psi lambda_e) / 3, kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1) the
+/// stiffness of ln Lambda (N6).
 inline int substeps_for(const Parameters<double>& par, const State<double>& at,
                         double strain_norm, double step_size = 0.05) {
   const double critical = critical_coordination(par, at.lambda);
@@ -286,7 +322,7 @@ inline int substeps_for(const Parameters<double>& par, const State<double>& at,
        par.k_z * std::exp(std::min(par.n_z * excess, 30.0)), kappa / 3.0,
        kappa / 3.0 *
            (std::abs(par.d_z) * std::abs(par.zeta) * (1.0 + par.c_l * at.coordination / critical) +
-            std::abs(par.d_a)),
+            std::abs(par.d_a) + par.d_psi * par.lambda_e),
        1.0});
   const double n = std::ceil(stiffest * strain_norm / step_size);
   return !(n < 1e6) ? 1000000 : n < 1.0 ? 1 : static_cast<int>(n);
