@@ -449,7 +449,7 @@ Parameters<double> default_start() {
   p.t_cs = 0.085, p.t_z = 0.1, p.k_t = 200.0;
   p.d_z = 3.0, p.d_a = 2.0, p.n_r = 0.0, p.n_z = 0.0;
   p.c_t = 1.0, p.c_l = 0.0, p.n_kappa = 1.0;
-  p.d_psi = 1.0, p.e_gamma = 0.8, p.lambda_e = 0.01;
+  p.d_psi = 0.0, p.e_gamma = 0.8, p.lambda_e = 0.01;
   return p;
 }
 

@@ -24,7 +24,7 @@ net::Parameters<double> parameters() {
   net::Parameters<double> p = net::default_start();
   p.kappa = 80.0, p.c_v = 4.0, p.a_z = 0.9, p.k_a = 15.0, p.f_z = 2.0, p.t_z = 0.2;
   p.d_z = 2.3, p.d_a = 0.5, p.n_r = 1.3, p.n_z = 4.0, p.k_z = 4.0;
-  p.e_gamma = 0.62;  // the critical void ratio line a little above the dense specimen (N7b)
+  p.d_psi = 1.0, p.e_gamma = 0.62;  // a critical void ratio line a little above the dense one (N7b)
   return p;
 }
 
