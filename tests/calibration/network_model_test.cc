@@ -47,8 +47,8 @@ State<double> random_state(std::mt19937_64& random) {
 // The state at the critical state of triaxial compression: e = e_c(Lambda), Z = Z_c(Lambda) and
 // each anisotropy at its critical norm along z.
 State<double> critical_state(const Parameters<double>& p, double lambda) {
-  return {critical_void_ratio(p, lambda), critical_coordination(p, lambda), lambda,
-          axisymmetric(p.a_cs), axisymmetric(p.f_cs), axisymmetric(p.t_cs)};
+  return {critical_void_ratio(p, log_normal_force(lambda)), critical_coordination(p, lambda),
+          lambda, axisymmetric(p.a_cs), axisymmetric(p.f_cs), axisymmetric(p.t_cs)};
 }
 
 Tensor<double> isochoric_compression(double size) {
@@ -151,16 +151,17 @@ TEST(NetworkModel, TheCriticalStateIsStationaryUnderIsochoricShear) {
 
 TEST(NetworkModel, TheCriticalVoidRatioLineDrivesTheDilatancy) {
   // N7b: on the critical network (Z = Z_c, anisotropies at their critical norms) a void ratio
-  // off the line e_c(Lambda) = e_gamma - lambda_e ln(Lambda / Lambda_ref) leaves D = d_psi (e_c - e)
-  // alone, so isochoric shear at eps_q-rate 1 moves Lambda at Lambda (Lambda / Lambda_ref)^(n_kappa -
-  // 1) (kappa / 3) d_psi (e_c - e) (N6) and nothing else but Z through c_l (N5b).
+  // off the line e_c(Lambda) = e_gamma - lambda_e ln(Lambda / Lambda_ref) leaves D = d_psi (e_c -
+  // e) alone, so isochoric shear at eps_q-rate 1 moves Lambda at Lambda (Lambda /
+  // Lambda_ref)^(n_kappa - 1) (kappa / 3) d_psi (e_c - e) (N6) and nothing else but Z through c_l
+  // (N5b).
   Parameters<double> p = plausible();
   p.n_kappa = 0.4;
   for (double lambda : {6e-4, 1.8e-3}) {
     State<double> s = critical_state(p, lambda);
     EXPECT_NEAR(s.void_ratio, p.e_gamma - p.lambda_e * std::log(lambda / kLambdaReference), 1e-15);
     for (double offset : {0.05, -0.03}) {
-      s.void_ratio = critical_void_ratio(p, lambda) + offset;
+      s.void_ratio = critical_void_ratio(p, log_normal_force(lambda)) + offset;
       const State<double> r = rate(p, s, isochoric_compression(1.0));
       const double log_rate = std::pow(lambda / kLambdaReference, p.n_kappa - 1.0) * p.kappa /
                               3.0 * p.d_psi * (-offset);
@@ -352,7 +353,7 @@ TEST(NetworkModel, DrainedTestsEndOnTheCriticalVoidRatioLine) {
       synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 81, 0.6),
       synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 81, 0.6)};
   for (const TestData& t : tests) {
-    const double e_c = critical_void_ratio(p, t.lambda.back());
+    const double e_c = critical_void_ratio(p, log_normal_force(t.lambda.back()));
     EXPECT_NEAR(t.void_ratio.back(), e_c, 2e-3) << t.name;
     // Both had far to go: the dense one dilates, the loose one contracts onto the line.
     EXPECT_GT(std::abs(t.e0 - e_c), 0.04) << t.name;
@@ -362,7 +363,8 @@ TEST(NetworkModel, DrainedTestsEndOnTheCriticalVoidRatioLine) {
   double largest = 0.0;
   for (const TestData& t : {synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 81, 0.6),
                             synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 81, 0.6)}) {
-    largest = std::max(largest, std::abs(t.void_ratio.back() - critical_void_ratio(p, t.lambda.back())));
+    const double e_c = critical_void_ratio(p, log_normal_force(t.lambda.back()));
+    largest = std::max(largest, std::abs(t.void_ratio.back() - e_c));
   }
   EXPECT_GT(largest, 0.02);
 }
@@ -646,9 +648,9 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
             (i == 7 ? std::string("-1") : std::to_string(x[i])) + ", \"unit\": \"1\"}";
   expect_error(text + "}}", "k_a");  // out of range
   expect_error("{\"model\": ", "not valid JSON");
-  // A file of the first version (no c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e) reads with c_t = 1, no Lode dependence,
-  // c_l = 0, no gain of contacts with the normal force, and n_kappa = 1, ln Lambda linear in the
-  // strain; an added parameter out of its range is refused by name.
+  // A file of the first version (no c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e) reads with
+  // c_t = 1, no Lode dependence, c_l = 0, no gain of contacts with the normal force, and n_kappa =
+  // 1, ln Lambda linear in the strain; an added parameter out of its range is refused by name.
   std::string first_version = R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8,
                                   "unit": "Pa"}, "parameters": {)";
   for (int i = 0; i < kNumFirstVersionParameters; ++i)

@@ -193,24 +193,31 @@ T critical_coordination(const Parameters<T>& par, const T& lambda) {
   return par.z_c * pow(lambda / T(kLambdaReference), par.zeta);
 }
 
-/// e_c(Lambda) = e_gamma - lambda_e ln(Lambda / Lambda_ref), the critical void ratio line of the
-/// dilatancy (Eq. N7b): a line in e - ln p, as the classical critical state line, written in the
-/// network's own normal force (p is proportional to Z Lambda / (1 + e), and at the critical state
-/// Z = Z_c(Lambda)).
+/// ln(Lambda / Lambda_ref), in which the normal force's stiffness (Eq. N6) and the critical void
+/// ratio (N7b) are written: a rate evaluation takes this one log for both.
 template <typename T>
-T critical_void_ratio(const Parameters<T>& par, const T& lambda) {
+T log_normal_force(const T& lambda) {
   using std::log;
-  return par.e_gamma - par.lambda_e * log(lambda / T(kLambdaReference));
+  return log(lambda / T(kLambdaReference));
+}
+
+/// e_c = e_gamma - lambda_e ln(Lambda / Lambda_ref) (log_force = log_normal_force(Lambda)), the
+/// critical void ratio line of the dilatancy (Eq. N7b): a line in e - ln p, as the classical
+/// critical state line, written in the network's own normal force (p is proportional to
+/// Z Lambda / (1 + e), and at the critical state Z = Z_c(Lambda)).
+template <typename T>
+T critical_void_ratio(const Parameters<T>& par, const T& log_force) {
+  return par.e_gamma - par.lambda_e * log_force;
 }
 
 /// (Lambda / Lambda_ref)^(n_kappa - 1), the factor of ln Lambda's stiffness kappa (Eq. N6), as
-/// exp((n_kappa - 1) ln x): for dual numbers one exp and one log where pow of two duals takes two
-/// pows and a log; with n_kappa = 1 it is exp(0) = 1 exactly, the law before n_kappa bit for bit.
+/// exp((n_kappa - 1) log_force), log_force = log_normal_force(Lambda): for dual numbers one exp
+/// where pow of two duals takes two pows and a log; with n_kappa = 1 it is exp(0) = 1 exactly, the
+/// law before n_kappa bit for bit.
 template <typename T>
-T stiffness_factor(const Parameters<T>& par, const T& lambda) {
+T stiffness_factor(const Parameters<T>& par, const T& log_force) {
   using std::exp;
-  using std::log;
-  return exp((par.n_kappa - T(1.0)) * log(lambda / T(kLambdaReference)));
+  return exp((par.n_kappa - T(1.0)) * log_force);
 }
 
 /// Eq. N2b: the Lode factor of a target along the shearing direction n = d_s / |d_s| (d_s the
@@ -263,13 +270,14 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   // Eq. N7: the dilatancy times the shear rate; A:d_s = a_d eps_q-rate, a_d the fabric's norm
   // along the shear direction. N7b: and the distance to the critical void ratio, so that a loose
   // network's contraction stops at its line (d_psi = 0: none, the model before it bit for bit).
+  const T log_force = log_normal_force(s.lambda);
   const T dilatancy_rate =
       par.d_z * excess * shear +
       par.d_a * ((s.fabric.array() * deviator.array()).sum() - par.a_cs * shear) +
-      par.d_psi * (critical_void_ratio(par, s.lambda) - s.void_ratio) * shear;
+      par.d_psi * (critical_void_ratio(par, log_force) - s.void_ratio) * shear;
   // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q).
   const T log_lambda_rate =
-      stiffness_factor(par, s.lambda) * par.kappa / T(3.0) * (volumetric + dilatancy_rate);
+      stiffness_factor(par, log_force) * par.kappa / T(3.0) * (volumetric + dilatancy_rate);
   r.lambda = s.lambda * log_lambda_rate;
   // Eq. N5 with N5b: towards Z_c under shear, contacts added by compression and by the growth of
   // the normal forces, at most as fast as Z_c grows with them (c_l <= 1), so that a growing Lambda
@@ -316,7 +324,7 @@ inline int substeps_for(const Parameters<double>& par, const State<double>& at,
   const double critical = critical_coordination(par, at.lambda);
   const double excess = (at.coordination - critical) / critical;
   const double speed = std::exp(std::min(par.n_r * excess, 30.0));
-  const double kappa = par.kappa * stiffness_factor(par, at.lambda);
+  const double kappa = par.kappa * stiffness_factor(par, log_normal_force(at.lambda));
   const double stiffest = std::max(
       {speed * std::max({par.k_a, par.k_f, par.k_t}),
        par.k_z * std::exp(std::min(par.n_z * excess, 30.0)), kappa / 3.0,
