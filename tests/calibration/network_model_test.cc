@@ -491,6 +491,9 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
   // few snapshots (at the usual 200 it is there by the first, and k_t is not identified).
   Parameters<double> truth = plausible();
   truth.k_t = 40.0;
+  // d_psi = 6: the critical void ratio line carries most of the loose test's volume change, so
+  // that two tests at one pressure identify d_psi and e_gamma (at 1.5 a refit slid to d_psi 0.4
+  // with e_gamma at its bound, the product d_psi (e_gamma - e) trading with d_z xi).
   truth.d_psi = 6.0;
   const std::vector<TestData> clean = {
       synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
