@@ -26,6 +26,14 @@ double value(const ceres::Jet<double, N>& x) {
   return x.a;
 }
 
+// Whether a residual is finite, its derivatives too (ceres::isfinite of a Jet looks at its value
+// only).
+bool finite(double x) { return std::isfinite(x); }
+template <int N>
+bool finite(const ceres::Jet<double, N>& x) {
+  return std::isfinite(x.a) && x.v.allFinite();
+}
+
 template <typename T>
 Parameters<double> values(const Parameters<T>& par) {
   auto in = to_array(par);
@@ -304,8 +312,7 @@ struct PathObjective {
     }
     // A path can stay admissible while its stress or its derivatives overflow (an undrained path
     // whose normal force runs away from a far start): such a point is unusable, not an error.
-    using std::isfinite;
-    return std::all_of(residual, residual + n, [](const T& r) { return isfinite(r); });
+    return std::all_of(residual, residual + n, [](const T& r) { return finite(r); });
   }
 };
 
