@@ -583,8 +583,9 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
     for (int i = 0; i < kNumParameters; ++i) {
       std::mt19937_64& random =
           generators[static_cast<std::size_t>(std::max(0, i - kNumFirstVersionParameters + 1))];
-      // Positive ranges: a factor of up to 3 either way; signed ones: +- max(|x|, 1); the critical
-      // void ratio e_gamma, whose start comes from the data (default_start(tests)): +- 0.1.
+      // Positive ranges: a factor of up to 3 either way; signed ones and a positive one at 0 (d_psi
+      // at its first start, clipped at 0 below): +- max(|x|, 1); the critical void ratio e_gamma,
+      // whose start comes from the data (default_start(tests)): +- 0.1.
       if (i == kCriticalVoidRatioIndex)
         y[i] = x[i] + 0.1 * unit(random);
       else
