@@ -466,11 +466,8 @@ Parameters<double> default_start(const std::vector<TestData>& tests) {
   // Each test near its critical state at its end: e_c(Lambda_end) = e_end (Eq. N7b).
   double sum = 0.0;
   for (const TestData& t : tests) {
-    const double e_end = t.void_ratio.empty()
-                             ? t.e0 - (1.0 + t.e0) * t.volumetric_strain.back()
-                             : t.void_ratio.back();
-    const double lambda_end = t.lambda.empty() ? kLambdaReference : t.lambda.back();
-    sum += e_end + p.lambda_e * std::log(lambda_end / kLambdaReference);
+    initial_state(t);  // names a test without Lambda; validated tests have their void ratios
+    sum += t.void_ratio.back() + p.lambda_e * std::log(t.lambda.back() / kLambdaReference);
   }
   p.e_gamma = std::clamp(sum / static_cast<double>(tests.size()), lower_bounds().e_gamma,
                          upper_bounds().e_gamma);

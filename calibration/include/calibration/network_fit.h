@@ -139,7 +139,8 @@ Parameters<double> default_start();
 /// default_start() with the critical void ratio line placed through the tests' ends (Eq. N7b):
 /// e_gamma the mean over the tests of e_end + lambda_e ln(Lambda_end / Lambda_ref), e_end the void
 /// ratio of the last series row and Lambda_end the last snapshot's, clipped to its bounds (a test
-/// sheared to its end is near its critical state).
+/// sheared to its end is near its critical state). Throws as initial_state for a test without Z,
+/// Lambda or a_t.
 Parameters<double> default_start(const std::vector<TestData>& tests);
 
 /// The fit's residuals of one test and their Jacobian by the parameters (forward-mode Jets; on
