@@ -14,20 +14,7 @@ seeds=${2:-1 2 3 4}
 jobs=${3:-$(nproc)}
 ./scripts/build.sh >/dev/null
 fitted="iso_dense_100kPa iso_medium_100kPa iso_loose_100kPa iso_dense_200kPa iso_medium_200kPa iso_loose_200kPa"
-mkdir -p "$out"
-for seed in $seeds; do
-  mkdir -p "$out/seed$seed"
-  for name in $fitted; do
-    /usr/bin/python3 bench/matrix/make_configs.py "$out/seed$seed" --seed "$seed" --only "$name" >/dev/null
-  done
-done
-start=$(date +%s)
-ls "$out"/seed*/*.toml | xargs -P "$jobs" -I{} bash -c \
-  'f={}; r=${f%.toml}.h5; [ -f "$r.done" ] && echo "$r was made before" && exit 0; \
-   build/sffcal dem --force -c "$f" -o "$r" > "${f%.toml}.log" 2>&1 && \
-   build/sffcal sff "$r" --resamples 0 >> "${f%.toml}.log" 2>&1 && touch "$r.done" && echo "$r done" \
-   || echo "$r FAILED"'
-echo "DEM: $(( $(date +%s) - start )) s with $jobs jobs"
+bench/calibration/run_seeds.sh "$out" "$seeds" "$fitted" "$jobs"
 for seed in $seeds; do
   d="$out/seed$seed"
   [ -f "$d/fit/parameters.json" ] && continue

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Runs specimens of the reference matrix (python/sffcal/matrix.py) for several packing seeds,
+# JOBS processes at a time, each followed by its SFF analysis without resampling:
+# OUT/seed<S>/<specimen>.{toml,h5,log}. A run that finished before (its .done marker) is kept.
+# Used by seed_spread.sh and matrix_means.sh.
+# Usage: bench/calibration/run_seeds.sh OUT "SEEDS" "SPECIMENS" JOBS
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+out=$1
+seeds=$2
+specimens=$3
+jobs=$4
+for seed in $seeds; do
+  mkdir -p "$out/seed$seed"
+  for name in $specimens; do
+    # --only matches substrings: write the config, then keep only the exact name's
+    /usr/bin/python3 bench/matrix/make_configs.py "$out/seed$seed" --seed "$seed" --only "$name" >/dev/null
+    [ -f "$out/seed$seed/$name.toml" ] || { echo "run_seeds.sh: no matrix specimen $name" >&2; exit 1; }
+  done
+done
+start=$(date +%s)
+configs=()
+for seed in $seeds; do for name in $specimens; do configs+=("$out/seed$seed/$name.toml"); done; done
+printf '%s\n' "${configs[@]}" | xargs -P "$jobs" -I{} bash -c \
+  'f={}; r=${f%.toml}.h5; [ -f "$r.done" ] && echo "$r was made before" && exit 0; \
+   build/sffcal dem --force -c "$f" -o "$r" > "${f%.toml}.log" 2>&1 && \
+   build/sffcal sff "$r" --resamples 0 >> "${f%.toml}.log" 2>&1 && touch "$r.done" && echo "$r done" \
+   || echo "$r FAILED (see ${f%.toml}.log)"'
+echo "DEM: $(( $(date +%s) - start )) s with $jobs jobs"
