@@ -90,17 +90,19 @@ def mean_run_file(runs, target, by):
     smallest final strain of all runs, and /analysis/sff by the mean over the runs snapshot by
     snapshot (the snapshots are at the same nominal strains; as many as the run with the fewest).
     Integer columns (steps, snapshot numbers) are the first run's. The root note `note:mean_of`
-    names the runs and their seeds (`by`: the program). `sffcal calibrate` and `sffcal fe-check`
+    names the runs and their seeds (`by`: the program). Written as `target`.part, then copied
+    compactly to `target`. `sffcal calibrate` and `sffcal fe-check`
     read the file as they read a run file. ValueError where the runs are not of one specimen
     (check_same_specimen)."""
     check_same_specimen(runs)
-    reduce(runs[0], target, by)
+    part = target + ".part"  # the target appears only once whole
+    reduce(runs[0], part, by)
     files = [h5py.File(r, "r") for r in runs]
     try:
         strains = [f["series/axial_strain"][()] for f in files]
         rows = _common_rows(strains)
         n_snapshots = min(len(f["analysis/sff/axial_strain"]) for f in files)
-        with h5py.File(target, "r+") as out:
+        with h5py.File(part, "r+") as out:
             for name, column in out["series"].items():
                 first = files[0]["series"][name][()]
                 column.resize((int(rows.sum()),))
@@ -129,3 +131,16 @@ def mean_run_file(runs, target, by):
     finally:
         for f in files:
             f.close()
+    _copy_compact(part, target)
+    os.remove(part)
+
+
+def _copy_compact(source, target):
+    """Copies `source` into a new file `target`, root attributes and top-level objects: the columns
+    resized and the tables rewritten above leave their old space unused in the file, which a fresh
+    copy does not carry (the means take half the size)."""
+    with h5py.File(source, "r") as src, h5py.File(target, "w") as dst:
+        for key, value in src.attrs.items():
+            dst.attrs[key] = value
+        for name in src:
+            src.copy(src[name], dst, name)
