@@ -90,12 +90,12 @@ def mean_run_file(runs, target, by):
     smallest final strain of all runs, and /analysis/sff by the mean over the runs snapshot by
     snapshot (the snapshots are at the same nominal strains; as many as the run with the fewest).
     Integer columns (steps, snapshot numbers) are the first run's. The root note `note:mean_of`
-    names the runs and their seeds (`by`: the program). Written as `target`.part, then copied
-    compactly to `target`. `sffcal calibrate` and `sffcal fe-check`
-    read the file as they read a run file. ValueError where the runs are not of one specimen
-    (check_same_specimen)."""
+    names the runs and their seeds (`by`: the program). Built as `target`.part, copied compactly
+    and renamed to `target`: an interrupted run leaves no partial target. `sffcal calibrate` and
+    `sffcal fe-check` read the file as they read a run file. ValueError where the runs are not of
+    one specimen (check_same_specimen)."""
     check_same_specimen(runs)
-    part = target + ".part"  # the target appears only once whole
+    part = target + ".part"
     reduce(runs[0], part, by)
     files = [h5py.File(r, "r") for r in runs]
     try:
@@ -131,7 +131,8 @@ def mean_run_file(runs, target, by):
     finally:
         for f in files:
             f.close()
-    _copy_compact(part, target)
+    _copy_compact(part, target + ".compact")
+    os.replace(target + ".compact", target)
     os.remove(part)
 
 

@@ -63,7 +63,8 @@ def case(folder, sign):
     check(abs(noise["p_ratio"] - expected_p) < 1e-12, f"sign {sign}: p/p0 noise {noise['p_ratio']}")
     target = os.path.join(folder, f"mean{sign:+.0f}.h5")
     seeds.mean_run_file([a, b], target, "seeds_test.py")
-    check(not os.path.exists(target + ".part"), f"sign {sign}: the partial file is left")
+    for left in (".part", ".compact"):
+        check(not os.path.exists(target + left), f"sign {sign}: the {left} file is left")
     with h5py.File(target, "r") as f:
         s = f["series"]
         check(len(s["axial_strain"]) == rows.sum(), f"sign {sign}: {len(s['axial_strain'])} rows")
