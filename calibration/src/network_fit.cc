@@ -456,7 +456,7 @@ Parameters<double> default_start() {
   p.t_cs = 0.085, p.t_z = 0.1, p.k_t = 200.0;
   p.d_z = 3.0, p.d_a = 2.0, p.n_r = 0.0, p.n_z = 0.0;
   p.c_t = 1.0, p.c_l = 0.0, p.n_kappa = 1.0;
-  p.d_psi = 0.0, p.e_gamma = 0.8, p.lambda_e = 0.01;
+  p.d_psi = 0.0, p.e_gamma = 0.8, p.lambda_e = 0.01, p.w_psi = 0.0;
   return p;
 }
 
@@ -568,8 +568,8 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
                                                 std::uint64_t seed) {
   std::vector<Parameters<double>> points = {start};
   // Each parameter added after the first version draws from its own generator (seed + 1 for c_t,
-  // seed + 2 for c_l, seed + 3 for n_kappa, seed + 4 to 6 for d_psi, e_gamma and lambda_e), so
-  // that the parameters before it get the draws they always had.
+  // seed + 2 for c_l, seed + 3 for n_kappa, seed + 4 to 6 for d_psi, e_gamma and lambda_e, seed + 7
+  // for w_psi), so that the parameters before it get the draws they always had.
   std::vector<std::mt19937_64> generators;
   for (int g = 0; g <= kNumParameters - kNumFirstVersionParameters; ++g)
     generators.emplace_back(seed + static_cast<std::uint64_t>(g));
@@ -581,8 +581,8 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
       std::mt19937_64& random =
           generators[static_cast<std::size_t>(std::max(0, i - kNumFirstVersionParameters + 1))];
       // Positive ranges: a factor of up to 3 either way; signed ones and a positive one at 0 (d_psi
-      // at its first start, clipped at 0 below): +- max(|x|, 1); the critical void ratio e_gamma,
-      // whose start comes from the data (default_start(tests)): +- 0.1.
+      // and w_psi at their first start, clipped at 0 below): +- max(|x|, 1); the critical void
+      // ratio e_gamma, whose start comes from the data (default_start(tests)): +- 0.1.
       if (i == kCriticalVoidRatioIndex)
         y[i] = x[i] + 0.1 * unit(random);
       else
@@ -693,14 +693,14 @@ StandardErrors standard_errors(const std::vector<TestData>& tests, const Paramet
   result.independent.fill(kNaN);
   result.robust.fill(kNaN);
   // The parameters inside their bounds (a fit that stopped at a bound held it there). With d_psi
-  // at its bound 0 there is no critical void ratio line, and its e_gamma and lambda_e do nothing
-  // (their columns are zero): none of the three has an error then.
+  // and w_psi at their bound 0 there is no critical void ratio line, and its e_gamma and lambda_e
+  // do nothing (their columns are zero): none of them has an error then.
   const auto x = to_array(par), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
   auto inside = [&](int i) {
     return x[i] > lo[i] + 1e-9 * (hi[i] - lo[i]) && x[i] < hi[i] - 1e-9 * (hi[i] - lo[i]);
   };
   std::vector<int> held = held_parameters(tests, options);
-  if (!inside(kStateDilatancyIndex))
+  if (!inside(kStateDilatancyIndex) && !inside(kTargetVoidRatioWeightIndex))
     held.insert(held.end(), {kCriticalVoidRatioIndex, kCriticalSlopeIndex});
   std::vector<int> free;
   for (int i = 0; i < kNumParameters; ++i)

@@ -187,6 +187,50 @@ TEST(NetworkModel, TheCriticalVoidRatioLineDrivesTheDilatancy) {
   EXPECT_EQ(substeps_for(p, s, 0.01), substeps_for(other, s, 0.01));
 }
 
+TEST(NetworkModel, TheTargetsStateWeighsTheVoidRatio) {
+  // N2c: from zero anisotropies, each one's rate under isochoric shear at eps_q-rate 1 is
+  // k_X exp(n_r xi) (2/3)(x_cs + x_z (xi - w_psi (e - e_c))) d_s, the void ratio's distance to the
+  // critical line entering the target only; w_psi = 0 is the model before it, bit for bit.
+  Parameters<double> p = plausible();
+  p.w_psi = 1.5;
+  const double lambda = 1.2e-3;
+  State<double> s = critical_state(p, lambda);
+  s.coordination *= 1.02;
+  s.fabric.setZero(), s.normal.setZero(), s.tangential.setZero();
+  const Tensor<double> d = isochoric_compression(1.0);
+  for (double offset : {0.06, -0.04}) {
+    s.void_ratio = critical_void_ratio(p, log_normal_force(lambda)) + offset;
+    const double critical = critical_coordination(p, lambda);
+    const double xi = (s.coordination - critical) / critical;
+    const double state = xi - p.w_psi * offset;
+    const State<double> r = rate(p, s, d);
+    const double speed = std::exp(p.n_r * xi);
+    const Tensor<double> expected_normal =
+        p.k_f * speed * (2.0 / 3.0) * (p.f_cs + p.f_z * state) * d;
+    const Tensor<double> expected_fabric =
+        p.k_a * speed * (2.0 / 3.0) * (p.a_cs + p.a_z * state) * d;
+    EXPECT_LT((r.normal - expected_normal).norm(), 1e-12 * expected_normal.norm()) << offset;
+    EXPECT_LT((r.fabric - expected_fabric).norm(), 1e-12 * expected_fabric.norm()) << offset;
+    // Looser than the line the targets are lower, denser higher.
+    Parameters<double> without = p;
+    without.w_psi = 0.0;
+    const double normal_without = rate(without, s, d).normal(2, 2);
+    EXPECT_EQ(r.normal(2, 2) < normal_without, offset > 0.0) << offset;
+  }
+  // w_psi = 0 (with d_psi = 0): e_gamma and lambda_e do nothing, bit for bit.
+  std::mt19937_64 random(17);
+  const State<double> any = random_state(random);
+  const Tensor<double> any_d = random_deviator(random, 1.0) + 0.1 * Tensor<double>::Identity();
+  p.w_psi = 0.0, p.d_psi = 0.0;
+  Parameters<double> other = p;
+  other.e_gamma = 1.3, other.lambda_e = 0.2;
+  const State<double> r = rate(p, any, any_d), r_other = rate(other, any, any_d);
+  EXPECT_EQ((r.fabric - r_other.fabric).norm(), 0.0);
+  EXPECT_EQ((r.normal - r_other.normal).norm(), 0.0);
+  EXPECT_EQ((r.tangential - r_other.tangential).norm(), 0.0);
+  EXPECT_EQ(r.lambda, r_other.lambda);
+}
+
 TEST(NetworkModel, TheLodeFactorIsOneInCompressionAndCtInExtension) {
   // Eq. N2b on the three classical directions: compression cos 3 theta = 1, extension -1, pure
   // shear 0 (g = 2c / (1 + c)); and it is scale free.
@@ -377,6 +421,7 @@ TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
   Parameters<double> p = plausible();
   p.c_t = 0.7;
   p.n_kappa = 0.4;  // n_kappa's column away from 1, where its factor is exp(0)
+  p.w_psi = 0.8;    // w_psi's column inside its range
   const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 25, 0.12);
   const TestData undrained = synthetic_test(p, "loose_undrained", 0.73, 4.4, 7e-4, false, 25, 0.08);
   const TestData extension =
@@ -423,7 +468,7 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
   // At one pressure lambda_e is held too.
   const double factors[kNumParameters] = {1.2, 0.95, 1.2, 0.8, 1.1, 0.95, 1.2, 1.15,
                                           1.05, 0.9, 1.1, 1.05, 0.9, 1.2, 1.1, 1.2,
-                                          0.9, 1.1, 1.0, 1.0, 1.0, 1.2, 0.97, 1.0};
+                                          0.9, 1.1, 1.0, 1.0, 1.0, 1.2, 0.97, 1.0, 1.0};
   for (int i = 0; i < kNumParameters; ++i) start[i] *= factors[i];
   FitOptions options;
   options.max_iterations = 300;
@@ -506,8 +551,13 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
   for (int k = 0; k < kRefits; ++k) {
     std::vector<TestData> noisy;
     for (const TestData& t : clean) noisy.push_back(with_noise(t, kNoise, random));
-    const FitResult result = fit(noisy, truth);
+    // w_psi held here: at its truth 0 (a bound) half the refits would sit on the bound.
+    FitOptions options;
+    options.held = {"w_psi"};
+    const FitResult result = fit(noisy, truth, options);
     ASSERT_TRUE(result.errors.estimated);
+    EXPECT_TRUE(std::isnan(result.errors.independent[kTargetVoidRatioWeightIndex]));
+    EXPECT_EQ(result.parameters.w_psi, truth.w_psi);
     // c_t, held without an extension test, c_l and n_kappa, held without an undrained one, and
     // lambda_e, held at one pressure, have none.
     for (int held : kHeldByTwoDrainedTests)
@@ -523,9 +573,10 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     }
   }
   double log_sum = 0.0;
-  const int estimated = kNumParameters - static_cast<int>(kHeldByTwoDrainedTests.size());
+  const int estimated = kNumParameters - static_cast<int>(kHeldByTwoDrainedTests.size()) - 1;
   for (int i = 0; i < kNumParameters; ++i) {
     if (std::count(kHeldByTwoDrainedTests.begin(), kHeldByTwoDrainedTests.end(), i)) continue;
+    if (i == kTargetVoidRatioWeightIndex) continue;  // held in this test
     double mean = 0.0, variance = 0.0;
     for (const auto& x : estimates) mean += x[i] / kRefits;
     for (const auto& x : estimates) variance += (x[i] - mean) * (x[i] - mean) / (kRefits - 1);
@@ -651,7 +702,7 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
             (i == 7 ? std::string("-1") : std::to_string(x[i])) + ", \"unit\": \"1\"}";
   expect_error(text + "}}", "k_a");  // out of range
   expect_error("{\"model\": ", "not valid JSON");
-  // A file of the first version (no c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e) reads with
+  // A file of the first version (no c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e, w_psi) reads with
   // c_t = 1, no Lode dependence, c_l = 0, no gain of contacts with the normal force, and n_kappa =
   // 1, ln Lambda linear in the strain; an added parameter out of its range is refused by name.
   std::string first_version = R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8,
@@ -670,8 +721,11 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
   EXPECT_EQ(read_parameters_json(path).d_psi, 0.0);
   EXPECT_EQ(read_parameters_json(path).e_gamma, 0.8);
   EXPECT_EQ(read_parameters_json(path).lambda_e, 0.0);
+  // ... and w_psi = 0, targets in xi alone.
+  EXPECT_EQ(read_parameters_json(path).w_psi, 0.0);
   expect_error(first_version + R"(, "d_psi": {"value": -1, "unit": "1"}}})", "d_psi");
   expect_error(first_version + R"(, "e_gamma": {"value": 0.1, "unit": "1"}}})", "e_gamma");
+  expect_error(first_version + R"(, "w_psi": {"value": -1, "unit": "1"}}})", "w_psi");
   expect_error(first_version + R"(, "c_t": {"value": 5, "unit": "1"}}})", "c_t");
   expect_error(first_version + R"(, "c_l": {"value": -0.1, "unit": "1"}}})", "c_l");
   expect_error(first_version + R"(, "n_kappa": {"value": 1.5, "unit": "1"}}})", "n_kappa");

@@ -176,6 +176,10 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
   added_parameter_acts(with_line, lambdae, 0.0, 0.05, compression,
                        "NPROPS = 44 is lambda_e = 0; lambda_e = 0.05 in PROPS(45) changes a "
                        "compression step, |dS33| [Pa]");
+  /* PROPS(46), w_psi (Eq. N2c): the anisotropies' targets in a compression step. */
+  added_parameter_acts(youngs_and_parameters, ct + 6, 0.0, 1.0, compression,
+                       "NPROPS = 45 is w_psi = 0; w_psi = 1 in PROPS(46) changes a compression "
+                       "step, |dS33| [Pa]");
 
   /* The name chooses the entry in any case; another name goes to ACST, which refuses these
    * PROPS (its parameters, PROPS(8..22), would be the anisotropies and E here). */

@@ -110,7 +110,7 @@ Errors compare(const Curve& curve, const TestData& test);
 
 /// Standard errors of fitted parameters from the second stage's residuals r and Jacobian J at the
 /// solution, over the parameters inside their bounds and not held (one at a bound, one the fit
-/// holds, FitOptions::held, and e_gamma and lambda_e with d_psi = 0, no line: NaN here):
+/// holds, FitOptions::held, and e_gamma and lambda_e with d_psi = w_psi = 0, no line: NaN here):
 /// `independent`, s^2 (J^T J)^-1 with s^2 = |r|^2 / (n - k), as if the residuals were
 /// independent; `robust`, the sandwich of calibration::autocorrelation_robust_standard_errors
 /// (fit.h) with one series per test and residual kind (eta; epsilon_v or p; Z; Lambda; a_c; a_n;
@@ -158,10 +158,10 @@ ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>
                                   bool predicted, const FitOptions& options = {});
 
 /// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t, c_l,
-/// n_kappa, d_psi, e_gamma and lambda_e, added after the first version, from std::mt19937_64(seed +
-/// 1) to (seed + 6)): each parameter with a positive range multiplied by a log-uniform factor
-/// within 3, each signed one moved uniformly by up to max(|x|, 1), e_gamma (a void ratio placed by
-/// the data) by up to 0.1; clipped to the bounds.
+/// n_kappa, d_psi, e_gamma, lambda_e and w_psi, added after the first version, from
+/// std::mt19937_64(seed + 1) to (seed + 7)): each parameter with a positive range multiplied by a
+/// log-uniform factor within 3, each signed one moved uniformly by up to max(|x|, 1), e_gamma (a
+/// void ratio placed by the data) by up to 0.1; clipped to the bounds.
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
                                                 std::uint64_t seed);
 

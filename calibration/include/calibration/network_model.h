@@ -66,11 +66,14 @@ struct Parameters {
   /// lambda_e ln(Lambda / Lambda_ref); d_psi = 0 (no anchor in the void ratio) in files written
   /// before it.
   T d_psi = unset(), e_gamma = unset(), lambda_e = unset();
+  /// The void ratio's weight in the anisotropies' targets (N2c): they follow xi - w_psi (e - e_c)
+  /// instead of xi alone; 0 (the coordination's excess alone) in files written before it.
+  T w_psi = unset();
 };
 
-inline constexpr int kNumParameters = 24;
+inline constexpr int kNumParameters = 25;
 /// The parameters added after the first version come at the end of the order (c_t, c_l, n_kappa,
-/// d_psi, e_gamma, lambda_e).
+/// d_psi, e_gamma, lambda_e, w_psi).
 inline constexpr int kNumFirstVersionParameters = 18;
 inline constexpr int kLodeFactorIndex = 18;
 inline constexpr int kLambdaGainIndex = 19;
@@ -78,16 +81,18 @@ inline constexpr int kLambdaExponentIndex = 20;
 inline constexpr int kStateDilatancyIndex = 21;
 inline constexpr int kCriticalVoidRatioIndex = 22;
 inline constexpr int kCriticalSlopeIndex = 23;
+inline constexpr int kTargetVoidRatioWeightIndex = 24;
 /// The value of an added parameter (index >= kNumFirstVersionParameters) in a parameter file or
 /// UMAT PROPS that does not give it: the model as it was before the parameter was added (c_t = 1,
 /// no Lode dependence; c_l = 0, no gain of contacts with the normal force; n_kappa = 1, ln Lambda
 /// linear in the strain; d_psi = 0, no critical void ratio line, whose e_gamma and lambda_e then
-/// do nothing: 0.8 and 0, values within their bounds).
+/// do nothing: 0.8 and 0, values within their bounds; w_psi = 0, targets in xi alone).
 inline double value_if_absent(int index) {
   switch (index) {
     case kLambdaGainIndex:
     case kStateDilatancyIndex:
     case kCriticalSlopeIndex:
+    case kTargetVoidRatioWeightIndex:
       return 0.0;
     case kCriticalVoidRatioIndex:
       return 0.8;
@@ -100,7 +105,7 @@ inline const std::array<const char*, kNumParameters>& parameter_names() {
   static const std::array<const char*, kNumParameters> names = {{
       "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
       "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z", "c_t",
-      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e"}};
+      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e", "w_psi"}};
   return names;
 }
 
@@ -108,7 +113,7 @@ template <typename T>
 std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
   return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
           p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z, p.c_t,
-          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e}};
+          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e, p.w_psi}};
 }
 
 template <typename T>
@@ -118,7 +123,7 @@ Parameters<T> from_array(const T* x) {
   p.a_z = x[6], p.k_a = x[7], p.f_cs = x[8], p.f_z = x[9], p.k_f = x[10], p.t_cs = x[11];
   p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
   p.n_z = x[17], p.c_t = x[18], p.c_l = x[19], p.n_kappa = x[20];
-  p.d_psi = x[21], p.e_gamma = x[22], p.lambda_e = x[23];
+  p.d_psi = x[21], p.e_gamma = x[22], p.lambda_e = x[23], p.w_psi = x[24];
   return p;
 }
 
@@ -132,7 +137,7 @@ inline Parameters<double> lower_bounds() {
   p.t_cs = 0.0, p.t_z = -1.0, p.k_t = 1.0;
   p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
   p.c_t = 0.2, p.c_l = 0.0, p.n_kappa = 0.0;
-  p.d_psi = 0.0, p.e_gamma = 0.3, p.lambda_e = 0.0;
+  p.d_psi = 0.0, p.e_gamma = 0.3, p.lambda_e = 0.0, p.w_psi = 0.0;
   return p;
 }
 
@@ -144,7 +149,7 @@ inline Parameters<double> upper_bounds() {
   p.t_cs = 0.5, p.t_z = 1.0, p.k_t = 5000.0;
   p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
   p.c_t = 2.0, p.c_l = 1.0, p.n_kappa = 1.0;
-  p.d_psi = 30.0, p.e_gamma = 1.5, p.lambda_e = 0.3;
+  p.d_psi = 30.0, p.e_gamma = 1.5, p.lambda_e = 0.3, p.w_psi = 10.0;
   return p;
 }
 
@@ -252,12 +257,20 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   const T critical = critical_coordination(par, s.lambda);
   const T excess = (s.coordination - critical) / critical;  // Eq. N3: over-coordination xi
   const T speed = exp(par.n_r * excess);  // Eq. N3: an over-coordinated network evolves faster
-  // Eq. N2: each anisotropy relaxes towards (x_cs + x_z xi) in the direction of shear,
-  // (2/3) d_s = eps_q-rate times the unit triaxial direction (t(.) = 1 in compression).
+  // How far the void ratio lies below the critical void ratio line e_c(Lambda) (N7b).
+  const T log_force = log_normal_force(s.lambda);
+  const T below_line = critical_void_ratio(par, log_force) - s.void_ratio;
+  // Eq. N2c: the targets' state, the over-coordination plus w_psi (e_c - e), so that loose
+  // specimens whose small xi differ in sign are not set apart (w_psi = 0: xi alone, the model
+  // before it bit for bit).
+  const T target_state = excess + par.w_psi * below_line;
+  // Eq. N2: each anisotropy relaxes towards (x_cs + x_z xi) in the direction of shear, xi the
+  // targets' state of N2c, (2/3) d_s = eps_q-rate times the unit triaxial direction (t(.) = 1 in
+  // compression).
   auto towards = [&](const T& critical_norm, const T& slope, const T& rate_constant,
                      const Tensor<T>& x) -> Tensor<T> {
     return rate_constant * speed *
-           (T(2.0 / 3.0) * (critical_norm + slope * excess) * deviator - shear * x);
+           (T(2.0 / 3.0) * (critical_norm + slope * target_state) * deviator - shear * x);
   };
   State<T> r;
   r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
@@ -270,11 +283,10 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   // Eq. N7: the dilatancy times the shear rate; A:d_s = a_d eps_q-rate, a_d the fabric's norm
   // along the shear direction. N7b: and the distance to the critical void ratio, so that a loose
   // network's contraction stops at its line (d_psi = 0: none, the model before it bit for bit).
-  const T log_force = log_normal_force(s.lambda);
   const T dilatancy_rate =
       par.d_z * excess * shear +
       par.d_a * ((s.fabric.array() * deviator.array()).sum() - par.a_cs * shear) +
-      par.d_psi * (critical_void_ratio(par, log_force) - s.void_ratio) * shear;
+      par.d_psi * below_line * shear;
   // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q).
   const T log_lambda_rate =
       stiffness_factor(par, log_force) * par.kappa / T(3.0) * (volumetric + dilatancy_rate);

@@ -30,6 +30,9 @@
  *                  d_psi (e_c - e) with e_c = e_gamma - lambda_e ln(Lambda/Lambda_ref)
  *                  (docs/network-model.md Eq. N7b); those not given: d_psi = 0 (no line),
  *                  e_gamma = 0.8, lambda_e = 0.
+ *   PROPS(46)      w_psi, the void ratio's weight in the anisotropies' targets, which follow
+ *                  xi - w_psi (e - e_c) (docs/network-model.md Eq. N2c); 0 (xi alone) when
+ *                  NPROPS < 46.
  * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
  * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
  * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
@@ -76,7 +79,7 @@ enum {
   SFFCAL_UMAT_NETWORK_PROP_PARAMETERS = 21,
   SFFCAL_UMAT_NETWORK_NPROPS_STATE = 20,
   SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39,  /* the first version's 18 parameters */
-  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 45   /* and c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e */
+  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 46   /* and c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e, w_psi */
 };
 
 void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double* sse,
