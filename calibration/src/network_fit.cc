@@ -686,6 +686,26 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
   return best;
 }
 
+namespace {
+// The parameters of a null-space direction of J^T J, largest share first (those above a tenth of
+// the largest), as "the combination of a, b and c" or "a": what the tests leave free.
+std::string unidentified_combination(const Eigen::VectorXd& direction, const std::vector<int>& free) {
+  std::vector<int> order(free.size());
+  for (std::size_t j = 0; j < order.size(); ++j) order[j] = static_cast<int>(j);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return std::abs(direction(a)) > std::abs(direction(b)); });
+  std::vector<std::string> names;
+  for (int j : order)
+    if (std::abs(direction(j)) > 0.1 * std::abs(direction(order[0])))
+      names.push_back(parameter_names()[free[static_cast<std::size_t>(j)]]);
+  if (names.size() == 1) return names[0];
+  std::string text = "the combination of " + names[0];
+  for (std::size_t j = 1; j < names.size(); ++j)
+    text += (j + 1 == names.size() ? " and " : ", ") + names[j];
+  return text;
+}
+}  // namespace
+
 StandardErrors standard_errors(const std::vector<TestData>& tests, const Parameters<double>& par,
                                const FitOptions& options) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -711,7 +731,10 @@ StandardErrors standard_errors(const std::vector<TestData>& tests, const Paramet
   std::vector<int> series_lengths;
   for (const TestData& t : tests) {
     const ObjectiveValue v = evaluate_objective(t, par, true, options);
-    if (!v.usable) return result;
+    if (!v.usable) {
+      result.missing = "test '" + t.name + "' cannot be integrated at the solution";
+      return result;
+    }
     for (int kind = 0; kind < 7; ++kind) {
       int length = 0;
       for (int r = 0; r < static_cast<int>(v.kinds.size()); ++r) {
@@ -724,17 +747,28 @@ StandardErrors standard_errors(const std::vector<TestData>& tests, const Paramet
     }
   }
   const int k = static_cast<int>(free.size()), n = static_cast<int>(residuals.size());
-  if (k == 0 || n <= k) return result;
+  if (k == 0 || n <= k) {
+    result.missing = std::to_string(n) + " residuals for " + std::to_string(k) +
+                     " free parameters";
+    return result;
+  }
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
       J(jacobian.data(), n, k);
   const Eigen::Map<const Eigen::VectorXd> r(residuals.data(), n);
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(J.transpose() * J);
-  if (!lu.isInvertible()) return result;
+  if (!lu.isInvertible()) {
+    result.missing = "J^T J is singular (rank " + std::to_string(lu.rank()) + " of " +
+                     std::to_string(k) + "): the tests do not fix " +
+                     unidentified_combination(lu.kernel().col(0), free);
+    return result;
+  }
   const Eigen::MatrixXd covariance = r.squaredNorm() / (n - k) * lu.inverse();
   std::vector<double> robust;
   if (!autocorrelation_robust_standard_errors(jacobian.data(), k, k, residuals.data(),
-                                              series_lengths, robust, &result.mean_bandwidth))
+                                              series_lengths, robust, &result.mean_bandwidth)) {
+    result.missing = "the robust covariance cannot be formed";
     return result;
+  }
   for (int j = 0; j < k; ++j) {
     result.independent[free[j]] = std::sqrt(covariance(j, j));
     result.robust[free[j]] = robust[j];

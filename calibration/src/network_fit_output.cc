@@ -83,6 +83,8 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
       << error(result.errors.robust[i]) << " | " << error(result.errors.independent[i]) << " | "
       << number(lo[i]) << " | " << number(hi[i]) << " |\n";
   }
+  if (!result.errors.estimated)
+    s << "\nNo standard errors: " << result.errors.missing << ".\n";
   s << "\nStarts: " << result.start_costs.size() << "; start " << result.start + 1
     << " won with the final cost " << number(result.final_cost, 6) << " (each start's:";
   for (double c : result.start_costs) s << " " << number(c, 6);
@@ -168,6 +170,8 @@ std::string write_fit_outputs(const std::string& folder, const std::vector<TestD
        "standard_errors: robust to residuals correlated along each curve (Newey-West sandwich, "
        "one series per test and residual kind); standard_errors_independent: s^2 (J^T J)^-1; "
        "null at a bound"},
+      {"standard_errors_missing",
+       result.errors.estimated ? Json() : Json(result.errors.missing)},
       {"mean_bandwidth", result.errors.mean_bandwidth},
       {"report", result.report}};
   record["errors"] = errors;

@@ -509,6 +509,34 @@ TestData with_noise(TestData t, double size, std::mt19937_64& random) {
 const std::array<int, 4> kHeldByTwoDrainedTests = {kLodeFactorIndex, kLambdaGainIndex,
                                                    kLambdaExponentIndex, kCriticalSlopeIndex};
 
+TEST(NetworkModel, MissingStandardErrorsSayWhy) {
+  // Where the covariance cannot be formed the errors are NaN and `missing` says why, naming what
+  // the tests leave free. With no tangential anisotropy to reach (t_cs at its bound 0, held, and
+  // t_z = 0) the Fᵗ of these tests stays 0 whatever its rate k_t: J^T J is singular along k_t.
+  Parameters<double> p = plausible();
+  p.t_cs = 0.0;
+  p.t_z = 0.0;
+  const std::vector<TestData> tests = {synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
+                                       synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+  const StandardErrors singular = standard_errors(tests, p);
+  EXPECT_FALSE(singular.estimated);
+  EXPECT_TRUE(std::isnan(singular.robust[kNumParameters - 1]));
+  EXPECT_NE(singular.missing.find("J^T J is singular"), std::string::npos) << singular.missing;
+  EXPECT_NE(singular.missing.find("do not fix k_t"), std::string::npos) << singular.missing;
+  RecordProperty("singular", singular.missing);
+  // One short test: fewer residuals than free parameters.
+  const StandardErrors short_test =
+      standard_errors({synthetic_test(plausible(), "short", 0.58, 6.7, 4.5e-4, true, 5, 0.02)},
+                      plausible());
+  EXPECT_FALSE(short_test.estimated);
+  EXPECT_NE(short_test.missing.find("residuals for"), std::string::npos) << short_test.missing;
+  RecordProperty("short", short_test.missing);
+  // Estimated: nothing missing.
+  const StandardErrors estimated = standard_errors(tests, plausible());
+  ASSERT_TRUE(estimated.estimated);
+  EXPECT_TRUE(estimated.missing.empty());
+}
+
 TEST(NetworkModel, TheCriticalLinesSlopeIsFittedFromTwoPressures) {
   // lambda_e is held (no standard error) for tests at one pressure and fitted with a second one
   // (initial mean stresses a factor 1.5 or more apart).

@@ -118,7 +118,8 @@ Errors compare(const Curve& curve, const TestData& test);
 struct StandardErrors {
   std::array<double, kNumParameters> independent, robust;
   double mean_bandwidth = 0.0;  ///< of the robust form's series
-  bool estimated = false;       ///< false: J^T J singular or too few residuals (all NaN)
+  bool estimated = false;       ///< false: all NaN, and `missing` says why
+  std::string missing;          ///< why there are none (empty when estimated)
 };
 StandardErrors standard_errors(const std::vector<TestData>& tests, const Parameters<double>& par,
                                const FitOptions& options = {});
