@@ -6,10 +6,11 @@
 # kind held back: a density (medium), a pressure (200 kPa), a loading angle (45 deg), an extension
 # (200 kPa, and the 45 deg deposit's) and an undrained test (200 kPa). ACST with the defaults
 # (OUT/fit_acst), and the contact-network model (OUT/fit_network) unless MODELS says otherwise.
-# Then each seed's runs are fitted alone with ACST, the same split (OUT/seed<S>/fit), for the
-# standard errors against the spread of refits. `bench/calibration/matrix_means.py OUT/mean
-# OUT/fit_acst OUT/fit_network` tabulates the errors against the targets and the noise,
-# `bench/calibration/seed_spread.py OUT` the refits' spread against the standard errors.
+# Then each seed's runs are fitted alone with each model, the same split (OUT/seed<S>/fit for
+# ACST, OUT/seed<S>/fit_network), for the standard errors against the spread of refits.
+# `bench/calibration/matrix_means.py OUT/mean OUT/fit_acst OUT/fit_network` tabulates the errors
+# against the targets and the noise, `bench/calibration/seed_spread.py OUT [--fit fit_network]`
+# the refits' spread against the standard errors.
 # Usage: bench/calibration/matrix_means.sh [OUT=out/matrix_means] [JOBS=nproc] [MODELS="acst network"]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -37,13 +38,17 @@ for model in $models; do
       "${extra[@]}" --threads "$jobs" -o "$out/fit_$model" > "$out/fit_$model.log" 2>&1
   echo "$model fitted in $(( $(date +%s) - s )) s"
 done
-for seed in $seeds; do
-  d="$out/seed$seed"
-  [ -f "$d/fit/parameters.json" ] && continue
-  fit_runs=(); for n in $fitted; do fit_runs+=("$d/$n.h5"); done
-  held_runs=(); for n in $held; do held_runs+=("$d/$n.h5"); done
-  s=$(date +%s)
-  build/sffcal calibrate "${fit_runs[@]}" --hold-out "${held_runs[@]}" --threads "$jobs" -o "$d/fit" \
-      > "$d/fit.log" 2>&1
-  echo "seed $seed fitted in $(( $(date +%s) - s )) s"
+for model in $models; do
+  fit=fit; extra=()
+  [ "$model" = network ] && { fit=fit_network; extra=(--starts 4); }
+  for seed in $seeds; do
+    d="$out/seed$seed"
+    [ -f "$d/$fit/parameters.json" ] && continue
+    fit_runs=(); for n in $fitted; do fit_runs+=("$d/$n.h5"); done
+    held_runs=(); for n in $held; do held_runs+=("$d/$n.h5"); done
+    s=$(date +%s)
+    build/sffcal calibrate --model "$model" "${fit_runs[@]}" --hold-out "${held_runs[@]}" \
+        "${extra[@]}" --threads "$jobs" -o "$d/$fit" > "$d/$fit.log" 2>&1
+    echo "seed $seed fitted with $model in $(( $(date +%s) - s )) s"
+  done
 done

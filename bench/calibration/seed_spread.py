@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Covariance standard errors against the spread of refits, and the DEM's own noise (issue 19).
 
-usage: bench/calibration/seed_spread.py OUT [--markdown FILE]
+usage: bench/calibration/seed_spread.py OUT [--fit NAME] [--markdown FILE]
 
-OUT is the folder of bench/calibration/seed_spread.sh: OUT/seed<S>/<specimen>.h5 (the runs) and
-OUT/seed<S>/fit/parameters.json (one calibration per seed: ACST, or the contact-network model of
-`sffcal calibrate --model network`). Prints, as Markdown:
+OUT is the folder of bench/calibration/seed_spread.sh or matrix_means.sh: OUT/seed<S>/<specimen>.h5
+(the runs) and OUT/seed<S>/NAME/parameters.json (one calibration per seed; NAME `fit` by default:
+ACST, or the contact-network model of `sffcal calibrate --model network`; matrix_means.sh writes
+the network model's refits to `fit_network`). Prints, as Markdown:
 - per fitted parameter: the mean over the seeds' fits, the standard deviation of the refits, the
   root-mean-square of the standard errors the fits reported (robust to correlated residuals, and
   as if the residuals were independent), and the ratios;
@@ -29,11 +30,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder")
+    parser.add_argument("--fit", default="fit", help="the fits' folder in each OUT/seed<S> (fit)")
     parser.add_argument("--markdown", help="also write the tables to this file")
     args = parser.parse_args()
-    seeds = sorted(glob.glob(os.path.join(args.folder, "seed*", "fit", "parameters.json")))
+    seeds = sorted(glob.glob(os.path.join(args.folder, "seed*", args.fit, "parameters.json")))
     if len(seeds) < 2:
-        sys.exit(f"seed_spread.py: fewer than 2 fits in {args.folder}/seed*/fit (run seed_spread.sh)")
+        sys.exit(f"seed_spread.py: fewer than 2 fits in {args.folder}/seed*/{args.fit} "
+                 "(run seed_spread.sh or matrix_means.sh)")
     fits = [json.load(open(p)) for p in seeds]
     names = [os.path.basename(os.path.dirname(os.path.dirname(p))) for p in seeds]
     out = [f"Fits: {', '.join(names)} ({len(fits)} seeds).", "",
