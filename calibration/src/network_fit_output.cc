@@ -1,5 +1,6 @@
 // Outputs of a contact-network fit: parameter file with the fit's record, predicted curves and
 // summary (network_fit.h, write_fit_outputs; docs/network-model.md, "Calibration").
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -87,7 +88,7 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
     s << "\nNo standard errors: " << result.errors.missing << ".\n";
   s << "\nStarts: " << result.start_costs.size() << "; start " << result.start + 1
     << " won with the final cost " << number(result.final_cost, 6) << " (each start's:";
-  for (double c : result.start_costs) s << " " << number(c, 6);
+  for (double c : result.start_costs) s << " " << (std::isfinite(c) ? number(c, 6) : "unusable");
   s << ").\n";
   return s.str();
 }
