@@ -4,8 +4,9 @@
 // run file (.h5) analysed by `sffcal sff`.
 //
 // usage: network_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] [--hold NAME]...
-//                    [--predicted-only] --out DIR
-//   (--hold NAME: the parameter held at its start value, e.g. c_t at 1: no Lode dependence)
+//                    [--predicted-only] [--substep-size S] --out DIR
+//   (--hold NAME: the parameter held at its start value, e.g. c_t at 1: no Lode dependence;
+//    --substep-size: FitOptions::substep_size, for timing the fit against its paths' error)
 //   e.g. build/bench/network_fit dense_100kPa loose_200kPa --hold-out dense_300kPa --out out/n1
 // Writes what `sffcal calibrate --model network` writes (network::write_fit_outputs: the
 // parameter file with the fit's record, <name>_network.csv per test, summary.md) into DIR, which
@@ -43,6 +44,8 @@ int main(int argc, char** argv) {
         options.held.push_back(argv[++k]);
       } else if (a == "--predicted-only") {
         options.first_stage = false;
+      } else if (a == "--substep-size" && k + 1 < argc) {
+        options.substep_size = std::atof(argv[++k]);
       } else if (a == "--out" && k + 1 < argc) {
         out_dir = argv[++k];
       } else {
@@ -51,7 +54,8 @@ int main(int argc, char** argv) {
     }
     if (fitted.empty() || out_dir.empty()) {
       std::fprintf(stderr, "usage: network_fit FITTED... [--hold-out HELD...] [--threads N] "
-                           "[--starts N] [--hold NAME]... [--predicted-only] --out DIR\n");
+                           "[--starts N] [--hold NAME]... [--predicted-only] [--substep-size S] "
+                           "--out DIR\n");
       return 2;
     }
     if (std::filesystem::exists(out_dir))

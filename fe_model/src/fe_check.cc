@@ -257,8 +257,10 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
     path_test.a_n = {test.a_n.front()};
     path_test.a_t = {test.a_t.front()};
     path_test.mobilisation = path_test.snapshot_eta = {0.0};
-    const net::Curve point =
-        net::predict(parameters, path_test, {}, dem.confining_pressure);  // the FE's traction
+    net::FitOptions driver_options;  // the element's substeps (network_update.h)
+    driver_options.substep_size = net::kUpdateSubstepSize;
+    const net::Curve point = net::predict(parameters, path_test, driver_options,
+                                          dem.confining_pressure);  // the FE's traction
     Curve driver;
     driver.label = "driver";
     driver.completed = point.complete;

@@ -655,9 +655,10 @@ std::vector<double> eta_at_rows(const Curve& c, int factor) {
 
 TEST(NetworkModel, TheFitsPathsAreWithin1e3OfConvergedPaths) {
   // Issue 19, point 3: the paths the fit evaluates (at the DEM's rows, 0.002 of axial strain apart
-  // at paper size, RK4 substeps of size 0.05) against converged ones (8 times finer rows, substeps
-  // of 0.005), with the paper-size fit's parameters on the four paper-size runs: q/p within 1e-3
-  // on the predicted drained paths and along the DEM's strain paths.
+  // at paper size, RK4 substeps of the fit's size 0.2) against converged ones (8 times finer rows,
+  // substeps of 0.005), with the paper-size fit's parameters on the four paper-size runs: q/p
+  // within 1e-3 on the predicted drained paths and along the DEM's strain paths; along the strain
+  // path, where the rows are the DEM's, the substeps' own error, within 1e-5 (2.1e-6 measured).
   const std::string reference = std::string(SFFCAL_SOURCE_DIR) + "/bench/reference/";
   const Parameters<double> par = read_parameters_json(reference + "network_paper_params.json");
   FitOptions converged;
@@ -679,7 +680,8 @@ TEST(NetworkModel, TheFitsPathsAreWithin1e3OfConvergedPaths) {
       for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, std::abs(a[k] - b[k]));
       std::printf("%-13s %-22s largest |q/p - converged| %.2e\n", name,
                   predicted ? "predicted path" : "along the strain path", largest);
-      EXPECT_LT(largest, 1e-3) << name << (predicted ? " predicted" : " strain path");
+      EXPECT_LT(largest, predicted ? 1e-3 : 1e-5)
+          << name << (predicted ? " predicted" : " strain path");
     }
   }
 }

@@ -94,7 +94,9 @@ TEST(NetworkMaterial, OneElementDrainedTriaxialIsTheMaterialPointPrediction) {
   t.coordination = {initial.coordination};
   t.lambda = {initial.lambda};
   t.a_c = t.a_n = t.a_t = t.mobilisation = t.snapshot_eta = {0.0};
-  const net::Curve point = net::predict(parameters(), t);
+  net::FitOptions driver;  // the element's substeps
+  driver.substep_size = net::kUpdateSubstepSize;
+  const net::Curve point = net::predict(parameters(), t, driver);
   ASSERT_TRUE(point.complete) << point.message;
   ASSERT_EQ(point.eta.size(), n);
   for (std::size_t k = 0; k < n; ++k) {

@@ -50,7 +50,9 @@ extern "C" int network_reference_drained_triaxial(const double* youngs_and_param
     test.a_c = {a_c};
     test.a_n = {a_n};
     test.a_t = {a_t};
-    const net::Curve c = net::predict(par, test, net::FitOptions(), p0);
+    net::FitOptions driver;  // the update's substeps, as the UMAT's
+    driver.substep_size = net::kUpdateSubstepSize;
+    const net::Curve c = net::predict(par, test, driver, p0);
     if (!c.complete) throw std::runtime_error(c.message);
     for (int k = 0; k < increments; ++k) {
       q[k] = c.q[static_cast<size_t>(k) + 1];
