@@ -689,7 +689,8 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
 namespace {
 // The parameters of a null-space direction of J^T J, largest share first (those above a tenth of
 // the largest), as "the combination of a, b and c" or "a": what the tests leave free.
-std::string unidentified_combination(const Eigen::VectorXd& direction, const std::vector<int>& free) {
+std::string unidentified_combination(const Eigen::VectorXd& direction,
+                                     const std::vector<int>& free) {
   std::vector<int> order(free.size());
   for (std::size_t j = 0; j < order.size(); ++j) order[j] = static_cast<int>(j);
   std::sort(order.begin(), order.end(),

@@ -516,8 +516,9 @@ TEST(NetworkModel, MissingStandardErrorsSayWhy) {
   Parameters<double> p = plausible();
   p.t_cs = 0.0;
   p.t_z = 0.0;
-  const std::vector<TestData> tests = {synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
-                                       synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+  const std::vector<TestData> tests = {
+      synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
+      synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
   const StandardErrors singular = standard_errors(tests, p);
   EXPECT_FALSE(singular.estimated);
   EXPECT_TRUE(std::isnan(singular.robust[kNumParameters - 1]));

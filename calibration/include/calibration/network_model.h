@@ -325,15 +325,15 @@ State<T> integrate(const Parameters<T>& par, const State<T>& start, const Tensor
   return s;
 }
 
-/// The update's substep size (network_update.h, the FE material and UMAT): RK4's local error is then
-/// ~ 0.05^5 / 120 of the change. The fit takes larger substeps (FitOptions::substep_size).
+/// The update's substep size (network_update.h, the FE material and UMAT): RK4's local error is
+/// then ~ 0.05^5 / 120 of the change. The fit takes larger substeps (FitOptions::substep_size).
 inline constexpr double kUpdateSubstepSize = 0.05;
 
-/// Substeps so that no rate constant times a substep's strain exceeds `step_size`, at the rate factor
-/// exp(n_r xi) of the state `at` (the start of the increment). The stiffest coupling may be ln
-/// Lambda's through Z_c(Lambda), Z and e_c(Lambda) in the dilatancy, kappa' (|d_z| zeta (1 + c_l
-/// Z/Z_c) + |d_a| + d_psi lambda_e) / 3, kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1) the
-/// stiffness of ln Lambda (N6).
+/// Substeps so that no rate constant times a substep's strain exceeds `step_size`, at the rate
+/// factor exp(n_r xi) of the state `at` (the start of the increment). The stiffest coupling may
+/// be ln Lambda's through Z_c(Lambda), Z and e_c(Lambda) in the dilatancy, kappa' (|d_z| zeta (1 +
+/// c_l Z/Z_c) + |d_a| + d_psi lambda_e) / 3, kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1)
+/// the stiffness of ln Lambda (N6).
 inline int substeps_for(const Parameters<double>& par, const State<double>& at,
                         double strain_norm, double step_size = kUpdateSubstepSize) {
   const double critical = critical_coordination(par, at.lambda);
