@@ -509,6 +509,12 @@ TestData with_noise(TestData t, double size, std::mt19937_64& random) {
 const std::array<int, 4> kHeldByTwoDrainedTests = {kLodeFactorIndex, kLambdaGainIndex,
                                                    kLambdaExponentIndex, kCriticalSlopeIndex};
 
+// A dense and a loose drained compression at one pressure (21 rows to 15 %).
+std::vector<TestData> dense_and_loose(const Parameters<double>& p) {
+  return {synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
+          synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+}
+
 TEST(NetworkModel, MissingStandardErrorsSayWhy) {
   // Where the covariance cannot be formed the errors are NaN and `missing` says why, naming what
   // the tests leave free. With no tangential anisotropy to reach (t_cs at its bound 0, held, and
@@ -516,9 +522,7 @@ TEST(NetworkModel, MissingStandardErrorsSayWhy) {
   Parameters<double> p = plausible();
   p.t_cs = 0.0;
   p.t_z = 0.0;
-  const std::vector<TestData> tests = {
-      synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
-      synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+  const std::vector<TestData> tests = dense_and_loose(p);
   const StandardErrors singular = standard_errors(tests, p);
   EXPECT_FALSE(singular.estimated);
   EXPECT_TRUE(std::isnan(singular.robust[kNumParameters - 1]));
@@ -542,8 +546,7 @@ TEST(NetworkModel, TheCriticalLinesSlopeIsFittedFromTwoPressures) {
   // lambda_e is held (no standard error) for tests at one pressure and fitted with a second one
   // (initial mean stresses a factor 1.5 or more apart).
   const Parameters<double> p = plausible();
-  std::vector<TestData> tests = {synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
-                                 synthetic_test(p, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+  std::vector<TestData> tests = dense_and_loose(p);
   ASSERT_LT(tests[0].p0, 1.5 * tests[1].p0);
   StandardErrors one = standard_errors(tests, p);
   ASSERT_TRUE(one.estimated);
@@ -569,9 +572,7 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
   // that two tests at one pressure identify d_psi and e_gamma (at 1.5 a refit slid to d_psi 0.4
   // with e_gamma at its bound, the product d_psi (e_gamma - e) trading with d_z xi).
   truth.d_psi = 6.0;
-  const std::vector<TestData> clean = {
-      synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 21, 0.15),
-      synthetic_test(truth, "loose", 0.73, 4.3, 7e-4, true, 21, 0.15)};
+  const std::vector<TestData> clean = dense_and_loose(truth);
   constexpr int kRefits = 12;
   constexpr double kNoise = 0.3;
   std::mt19937_64 random(20261203);
