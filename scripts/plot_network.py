@@ -3,7 +3,8 @@
 bench/calibration/network_fit --out DIR) against the DEM:
 q/p, volumetric strain, Z, Lambda, a_c, a_n, a_t and p/p0 against axial strain (p/p0: each mean
 stress over its own start, as the fit compares them; the model's is the contacts' SFF stress, the
-DEM's the walls'). A test is a committed
+DEM's the walls'; a_n: the DEM's that the fit followed as dots, closing the SFF equation on the
+contacts' q/p, and sff's measured one as rings). A test is a committed
 paper-size CSV pair by name (bench/reference/NAME_series.csv, NAME_sff.csv) or a run file (.h5).
 
 usage: plot_network.py DIR TEST... -o OUT.png
@@ -56,7 +57,14 @@ def main():
         for ax, (column, label, dem_column, table) in zip(axes.flat, panels):
             ax.plot(model["axial_strain"], model[column], "-", color=colour, label=name)
             d = dem[table]
-            ax.plot(d["axial_strain"], d[dem_column], ".", color=colour, ms=3)
+            if column == "a_n" and "dem_a_n" in model:
+                # The a_n the fit followed (closing the SFF equation on the contacts' q/p), and
+                # sff's measured one hollow.
+                ax.plot(d["axial_strain"], d[dem_column], "o", mfc="none", color=colour, ms=3)
+                at = [(x, y) for x, y in zip(model["axial_strain"], model["dem_a_n"]) if y == y]
+                ax.plot([x for x, _ in at], [y for _, y in at], ".", color=colour, ms=5)
+            else:
+                ax.plot(d["axial_strain"], d[dem_column], ".", color=colour, ms=3)
             ax.set_xlabel("axial strain")
             ax.set_ylabel(label)
         ax = axes.flat[-1]

@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 #include <omp.h>
@@ -76,12 +77,15 @@ int calibrate_network(const std::vector<std::string>& run_paths,
   fit.held = options.held_parameters;
   fit.first_stage = !options.predicted_only;
   fit.progress = progress_printer();
-  const std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
-  const std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
+  std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
+  std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
   refuse_shared_runs(tests, held_out);
   net::check_unique_names(tests, held_out);
-  for (const auto* list : {&tests, &held_out})
-    for (const calibration::TestData& t : *list) net::initial_state(t);  // names a test without Z
+  for (auto* list : {&tests, &held_out})
+    for (calibration::TestData& t : *list) {
+      net::initial_state(t);  // names a test without Z
+      t = net::with_closing_normal_anisotropy(std::move(t));
+    }
   const net::Parameters<double> first = network_start(options.start_file, tests);
   const auto start = std::chrono::steady_clock::now();
   const net::FitResult result = net::fit(tests, first, fit);

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibration/network_fit.h"
@@ -60,8 +61,10 @@ int main(int argc, char** argv) {
     }
     if (std::filesystem::exists(out_dir))
       throw std::runtime_error("output folder " + out_dir + " exists (not overwritten)");
-    const std::vector<calibration::TestData> fit_tests = bench::read_reference_tests(fitted),
-                                              held_tests = bench::read_reference_tests(held);
+    std::vector<calibration::TestData> fit_tests = bench::read_reference_tests(fitted),
+                                        held_tests = bench::read_reference_tests(held);
+    for (auto* list : {&fit_tests, &held_tests})
+      for (calibration::TestData& t : *list) t = net::with_closing_normal_anisotropy(std::move(t));
     net::check_unique_names(fit_tests, held_tests);
     options.progress = [](const std::string& line) {
       std::printf("%s\n", line.c_str());

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "calibration/network_update.h"
+#include "sff/sff_equation.h"
 
 namespace calibration::network {
 namespace {
@@ -325,6 +326,24 @@ struct TestCost {
 };
 
 }  // namespace
+
+TestData with_closing_normal_anisotropy(TestData t) {
+  if (t.snapshot_eta.size() != t.a_n.size() || t.a_c.size() != t.a_n.size() ||
+      t.a_t.size() != t.a_n.size())
+    throw std::runtime_error("test '" + t.name + "' (" + t.source +
+                             "): its SFF table lacks the contacts' stress ratio eta or a_t at "
+                             "some snapshot, from which the model's a_n is found");
+  for (std::size_t k = 0; k < t.a_n.size(); ++k) {
+    try {
+      t.a_n[k] = sff::concise_normal_anisotropy(t.a_c[k], t.a_t[k], t.snapshot_eta[k]);
+    } catch (const sff::StatisticsError& e) {
+      throw std::runtime_error("test '" + t.name + "' (" + t.source + "), snapshot " +
+                               std::to_string(k) + ": " + e.what());
+    }
+  }
+  t.normal_anisotropy = "closing";
+  return t;
+}
 
 State<double> initial_state(const TestData& t) {
   if (t.coordination.empty() || t.lambda.empty() || t.a_t.empty())

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -125,18 +126,23 @@ std::string write_fit_outputs(const std::string& folder, const std::vector<TestD
     const Curve& c = o.predicted;
     const std::vector<double> row(c.row.begin(), c.row.end()),
         snapshot(c.snapshot.begin(), c.snapshot.end());
+    // The DEM's a_n the fit followed (with_closing_normal_anisotropy), at the snapshots' nodes.
+    std::vector<double> dem_a_n(c.snapshot.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = 0; k < c.snapshot.size(); ++k)
+      if (c.snapshot[k] >= 0) dem_a_n[k] = o.test->a_n[c.snapshot[k]];
     output::write_csv(fs::path(folder) / (o.test->name + "_network.csv"),
                       "axial_strain,volumetric_strain,void_ratio,p,q,eta,coordination,lambda,a_c,"
-                      "a_n,a_t,dem_row,dem_snapshot",
+                      "a_n,a_t,dem_row,dem_snapshot,dem_a_n",
                       {c.axial_strain, c.volumetric_strain, c.void_ratio, c.p, c.q, c.eta,
-                       c.coordination, c.lambda, c.a_c, c.a_n, c.a_t, row, snapshot});
+                       c.coordination, c.lambda, c.a_c, c.a_n, c.a_t, row, snapshot, dem_a_n});
   }
   Json inputs = Json::array(), errors = Json::array();
   for (const TestOutcome& o : outcomes) {
     const TestData& t = *o.test;
     inputs.push_back({{"name", t.name}, {"source", t.source}, {"seed", t.seed},
                       {"program_version", t.program_version}, {"p0_Pa", t.p0}, {"e0", t.e0},
-                      {"loading_path", to_string(t.path)}, {"fitted", o.fitted}});
+                      {"loading_path", to_string(t.path)}, {"fitted", o.fitted},
+                      {"a_n", t.normal_anisotropy}});
     errors.push_back(errors_json(o));
   }
   Json costs = Json::array();

@@ -221,7 +221,8 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
   for (const std::string& path : options.dem_runs) {
     // The network's fabric invariant is a_c itself: A:n_c / a_cs with a_cs = sqrt(2/3).
     const DemRun dem = read_dem_run(path, calibration::kSqrtTwoThirds);
-    const calibration::TestData test = calibration::read_run_file(path);
+    const calibration::TestData test =
+        net::with_closing_normal_anisotropy(calibration::read_run_file(path));
     const net::State<double> start = net::initial_state(test);
     NetworkInitialState initial;
     initial.void_ratio = start.void_ratio;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "force_moments.h"
 #include "sff/tensors.h"
@@ -21,6 +22,18 @@ Eigen::Matrix3d sff_stress(const SffState& s) {
 
 double concise_eta(double a, double f, double t) {
   return (0.4 * (a + f) + (8.0 / 105.0) * a * f + 3.0 * t) / (1.0 + (4.0 / 45.0) * a * f);
+}
+
+double concise_normal_anisotropy(double a, double t, double eta) {
+  const double slope = 0.4 + (8.0 / 105.0) * a - (4.0 / 45.0) * a * eta;
+  if (!std::isfinite(a) || !std::isfinite(t) || !std::isfinite(eta) || !(slope > 0.0)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "no normal-force anisotropy gives the stress ratio %g with a_c = %g and a_t = %g "
+                  "in the concise SFF form", eta, a, t);
+    throw StatisticsError(text);
+  }
+  return (eta - 0.4 * a - 3.0 * t) / slope;
 }
 
 Mobilisation mobilisation(ContactSpan contacts, const Eigen::Matrix3d& fabric_a, double lambda,

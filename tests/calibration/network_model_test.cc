@@ -339,6 +339,7 @@ TestData synthetic_test(const Parameters<double>& p, const std::string& name, do
       t.a_c[c.snapshot[k]] = c.a_c[k];
       t.a_n[c.snapshot[k]] = c.a_n[k];
       t.a_t[c.snapshot[k]] = c.a_t[k];
+      t.snapshot_eta[c.snapshot[k]] = c.eta[k];
     }
   }
   validate_test_data(t);
@@ -350,6 +351,37 @@ TestData synthetic_test(const Parameters<double>& p, const std::string& name, do
   return synthetic_test(p, name, e0, z0, lambda0,
                         drained ? TestPath::kDrainedCompression : TestPath::kUndrainedCompression,
                         rows, end_strain);
+}
+
+TEST(NetworkModel, TheClosingNormalAnisotropyGivesTheContactsStressRatio) {
+  // The model's own states are axisymmetric, where the SFF equation is the concise form: on its
+  // own prediction the closing a_n is the model's a_n, so fitting the closing a_n of data the
+  // model made is fitting the model's.
+  const Parameters<double> p = plausible();
+  for (const TestPath path : {TestPath::kDrainedCompression, TestPath::kDrainedExtension}) {
+    const TestData t = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, path, 25, 0.12);
+    const TestData closed = with_closing_normal_anisotropy(t);
+    EXPECT_EQ(closed.normal_anisotropy, "closing");
+    ASSERT_EQ(closed.a_n.size(), t.a_n.size());
+    for (std::size_t k = 0; k < t.a_n.size(); ++k) EXPECT_NEAR(closed.a_n[k], t.a_n[k], 1e-12);
+  }
+  // Contacts whose stress ratio lies above the SFF equation's of the measured anisotropies (the
+  // 500-clump dense peak) get a larger a_n, which gives that stress ratio.
+  TestData t = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 25, 0.12);
+  for (double& eta : t.snapshot_eta) eta *= 1.07;
+  const TestData closed = with_closing_normal_anisotropy(t);
+  for (std::size_t k = 1; k < t.a_n.size(); ++k) {
+    EXPECT_GT(closed.a_n[k], t.a_n[k]);
+    EXPECT_NEAR(sff::concise_eta(t.a_c[k], closed.a_n[k], t.a_t[k]), t.snapshot_eta[k], 1e-12);
+  }
+  // A table without the contacts' stress ratio is refused, naming the test.
+  t.snapshot_eta.clear();
+  try {
+    with_closing_normal_anisotropy(t);
+    ADD_FAILURE() << "a test without eta at its snapshots was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'dense'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(NetworkModel, MeanStressErrorsAreRelativeToEachOnesStart) {

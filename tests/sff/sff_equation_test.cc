@@ -66,6 +66,21 @@ TEST(SffEquation, ConciseFormEqualsTheTensorFormForAxisymmetricStates) {  // T10
   }
 }
 
+TEST(SffEquation, TheConciseNormalAnisotropyInvertsTheConciseForm) {
+  // In compression and extension, with fabric and tangential anisotropies of either sign.
+  for (const auto& [a, f, t] : {std::tuple{0.98, 1.74, 0.125}, {-1.1, -1.35, -0.06},
+                                 {0.2, -0.1, 0.0}, {1.6, 2.2, 0.14}}) {
+    const double eta = concise_eta(a, f, t);
+    EXPECT_NEAR(concise_normal_anisotropy(a, t, eta), f, 1e-13) << a << " " << f << " " << t;
+    // A larger stress ratio at the same fabric needs a larger normal-force anisotropy.
+    EXPECT_GT(concise_normal_anisotropy(a, t, eta + 0.05), f);
+  }
+  // The coefficient of f vanishes at eta = (2/5 + 8a/105) / (4a/45): no f reaches it.
+  const double a = 2.0, unreachable = (0.4 + 16.0 / 105.0) / (8.0 / 45.0);
+  EXPECT_THROW(concise_normal_anisotropy(a, 0.0, unreachable), StatisticsError);
+  EXPECT_THROW(concise_normal_anisotropy(0.5, 0.0, std::nan("")), StatisticsError);
+}
+
 using testing::make_contact;
 
 TEST(SffEquation, ExactDecoupledFormReproducesTheStressWithoutTheBranchTerm) {  // T12

@@ -62,6 +62,9 @@ struct TestData {
   /// Snapshots (SFF table): axial strain, contact-normal anisotropy a_c, normal-force
   /// anisotropy a_n, mobilisation m, stress ratio eta from the contacts.
   std::vector<double> snapshot_axial_strain, a_c, a_n, mobilisation, snapshot_eta;
+  /// What a_n holds: "measured" (sff's) or "closing" (the contact-network model's,
+  /// network::with_closing_normal_anisotropy).
+  std::string normal_anisotropy = "measured";
   /// Snapshots: coordination Z, mean normalised normal force Lambda, tangential-force anisotropy
   /// a_t (the contact-network model's state, network_fit.h); empty where the data lack them.
   std::vector<double> coordination, lambda, a_t;

@@ -38,6 +38,16 @@ T triaxial_part(const Tensor<T>& x) {
   return x(2, 2) - T(0.5) * (x(0, 0) + x(1, 1));
 }
 
+/// The test as the contact-network model reads it: each snapshot's a_n replaced by the
+/// normal-force anisotropy with which the SFF equation of the snapshot's a_c and a_t gives its
+/// contacts' stress ratio (sff::concise_normal_anisotropy). The model's stress is the SFF equation
+/// of its state, whose truncation puts the measured anisotropies' stress ratio 6-10 % below the
+/// contacts' at a 500-clump dense specimen's peak; with the measured a_n the fit had to lift a_c
+/// to reach the DEM's q/p (docs/network-model.md, "State and stress"). Every front end that fits
+/// or checks the model against DEM runs reads them through this. Throws std::runtime_error naming
+/// the test and snapshot where no a_n gives its stress ratio.
+TestData with_closing_normal_anisotropy(TestData test);
+
 /// The state of the test's first snapshot (axisymmetric about z) with the void ratio of its first
 /// series row. Throws std::runtime_error naming the test when its data lack Z, Lambda or a_t.
 State<double> initial_state(const TestData& test);
@@ -192,7 +202,8 @@ void check_unique_names(const std::vector<TestData>& fitted, const std::vector<T
 ///   and each test's errors;
 /// - <test>_network.csv per test: the prediction on its own loading path at the DEM's rows and
 ///   snapshots (axial_strain, volumetric_strain, void_ratio, p [Pa], q [Pa], eta, coordination,
-///   lambda, a_c, a_n, a_t, dem_row, dem_snapshot: which DEM row or snapshot a node is, -1 none);
+///   lambda, a_c, a_n, a_t, dem_row, dem_snapshot: which DEM row or snapshot a node is, -1 none;
+///   dem_a_n: the test's a_n at a snapshot's node, NaN elsewhere);
 /// - summary.md: the per-test errors (along the DEM strain path and predicted; fitted and held
 ///   back) and the parameters with their standard errors.
 /// Throws std::runtime_error for two tests of one name or a file that cannot be written.

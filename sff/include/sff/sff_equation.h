@@ -27,6 +27,15 @@ Eigen::Matrix3d sff_stress(const SffState& state);
 /// t = t(F^t): eta = [(2/5)(a + f) + (8/105) a f + 3 t] / [1 + (4/45) a f].
 double concise_eta(double a, double f, double t);
 
+/// The normal-force anisotropy f with which the concise form gives a measured stress ratio:
+/// concise_eta(a, f, t) = eta, f = (eta - (2/5) a - 3 t) / ((2/5) + (8/105) a - (4/45) a eta)
+/// (the concise form solved for f; it is linear in f over its denominator). Where the SFF
+/// equation's truncation leaves the stress ratio of the measured a, f, t off the contacts' one,
+/// this f closes it (the contact-network model's data, docs/network-model.md, "State and
+/// stress"). Throws StatisticsError where no f gives eta (the bracket's coefficient of f not
+/// positive, far outside any granular state) or an input is not finite.
+double concise_normal_anisotropy(double a, double t, double eta);
+
 /// Contact mobilisation (§5): xi = |f_t| / (mu f_n) in [0, 1], tau the unit tangential direction.
 struct Mobilisation {
   Eigen::Matrix3d weighted = Eigen::Matrix3d::Zero();  ///< T_m: F^t = mu T_m exactly
