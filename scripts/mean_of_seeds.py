@@ -8,7 +8,8 @@ The runs must be of one specimen: their stored configs equal but for the seed an
 count (else an error names the keys that differ). Writes MEAN.h5, a reduced run file whose /series and /analysis/sff are the means over the runs
 (`sffcal calibrate` and `sffcal fe-check` read it as a run file), and MEAN.noise.json: the seeds,
 the runs and the noise per quantity (q/p, volumetric strain, p/p0: the RMS over the rows of the
-standard deviation across the seeds; for two, RMS(a - b)/sqrt(2)).
+standard deviation across the seeds; for two, RMS(a - b)/sqrt(2); a_c: the same over the sheared
+snapshots).
 """
 import argparse
 import json
@@ -50,12 +51,14 @@ def main():
         sys.exit(f"mean_of_seeds.py: {e}")
     record = {"seeds": run_seeds, "runs": [os.path.basename(r) for r in args.runs],
               "noise": noise,
-              "definition": "RMS over the common rows of the standard deviation across the seeds "
-                            "(two seeds: RMS(a - b)/sqrt(2)); the mean of K seeds scatters by noise/sqrt(K)"}
+              "definition": "RMS over the common rows (a_c: the common sheared snapshots) of the "
+                            "standard deviation across the seeds (two seeds: RMS(a - b)/sqrt(2)); "
+                            "the mean of K seeds scatters by noise/sqrt(K)"}
     with open(noise_file, "w") as f:
         json.dump(record, f, indent=1)
     print(f"{args.output}: mean of seeds {', '.join(map(str, run_seeds))}; noise "
-          + ", ".join(f"{k} {v:.4g}" for k, v in record["noise"].items()))
+          + ", ".join(f"{k} {v:.4g}" if v is not None else f"{k} none"
+                      for k, v in record["noise"].items()))
 
 
 if __name__ == "__main__":

@@ -8,8 +8,8 @@ usage: bench/calibration/matrix_means.py MEANS FIT [FIT...] [--markdown FILE]
 MEANS is the folder of the means and their noise files, MEANS/<specimen>.noise.json
 (scripts/mean_of_seeds.py: OUT/mean of matrix_means.sh, or tests/data/reference/matrix_means);
 each FIT a folder of `sffcal calibrate -o FIT` (ACST, or --model network) on those means. The noise of
-the mean of K seeds is the noise of one run (the RMS over the rows of the standard deviation
-across the seeds) divided by sqrt(K). Undrained tests have eps_v = 0 and are judged in p/p0, for
+the mean of K seeds is the noise of one run (the RMS over the rows, for a_c over the sheared
+snapshots, of the standard deviation across the seeds) divided by sqrt(K). Undrained tests have eps_v = 0 and are judged in p/p0, for
 which the issue gives no target.
 """
 import argparse
@@ -63,7 +63,7 @@ def main():
             record = json.load(f)
         k = len(record["seeds"])
         noise[os.path.basename(path)[: -len(".noise.json")]] = (
-            k, {q: v / math.sqrt(k) for q, v in record["noise"].items()})
+            k, {q: v / math.sqrt(k) for q, v in record["noise"].items() if v is not None})
     if not noise:
         sys.exit(f"matrix_means.py: no noise file in {args.means} (scripts/mean_of_seeds.py writes them)")
     lines = []
@@ -76,7 +76,8 @@ def main():
         errors = errors_of(fit)
         lines += [f"### {folder} ({fit.get('model', 'acst')})", "",
                   "| test | role | RMS q/p | noise of the mean | RMS ε_v | noise of the mean | "
-                  "RMS p/p0 | noise of the mean | RMS a_c |", "|---|---|---|---|---|---|---|---|---|"]
+                  "RMS p/p0 | noise of the mean | RMS a_c | noise of the mean |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
         missed = []
         for test, (role, e) in sorted(errors.items(), key=lambda t: (t[1][0] != "fitted", t[0])):
             k, n = noise.get(test, (0, {}))
@@ -86,7 +87,8 @@ def main():
                    cell(e["eta"], target["eta"]), cell(n.get("eta")),
                    "0 (undrained)" if undrained else cell(e["volumetric"], target["volumetric"]),
                    "" if undrained else cell(n.get("volumetric_strain")),
-                   cell(e["p_ratio"]), cell(n.get("p_ratio")), cell(e["a_c"], A_C_TARGET)]
+                   cell(e["p_ratio"]), cell(n.get("p_ratio")), cell(e["a_c"], A_C_TARGET),
+                   cell(n.get("a_c"))]
             lines.append("| " + " | ".join(row) + " |")
             for name, value, limit in (("q/p", e["eta"], target["eta"]),
                                        ("ε_v", None if undrained else e["volumetric"], target["volumetric"]),

@@ -11,8 +11,9 @@ import numpy as np
 from sffcal.reduce import reduce
 from sffcal.runfile import config_text
 
-# The noise is measured on these: q/p, the volumetric strain and p/p0 (undrained tests).
-NOISE_KEYS = ("eta", "volumetric_strain", "p_ratio")
+# The noise is measured on these: q/p, the volumetric strain and p/p0 (undrained tests) over the
+# series rows, and the fabric anisotropy a_c over the snapshots.
+NOISE_KEYS = ("eta", "volumetric_strain", "p_ratio", "a_c")
 
 
 def _flat(table, prefix=""):
@@ -67,11 +68,13 @@ def noise(runs):
     """The DEM's noise over the seeds `runs` (run files, at least two), per quantity of NOISE_KEYS:
     the root mean square over the common rows of the sample standard deviation across the seeds.
     For two seeds that is RMS(a - b)/sqrt(2); for more, the same as the mean of (a - b)^2/2 over all
-    pairs. The mean of K seeds scatters by noise/sqrt(K)."""
+    pairs. The mean of K seeds scatters by noise/sqrt(K). a_c: the same over the snapshots after
+    the first (the sheared ones; as many as the run with the fewest, as mean_run_file takes them),
+    where the fit's RMS a_c errors are taken; None where no run has a sheared snapshot."""
     if len(runs) < 2:
         raise ValueError("the noise needs at least two seeds")
     check_same_specimen(runs)
-    strains, columns = [], {k: [] for k in NOISE_KEYS}
+    strains, columns, fabric = [], {k: [] for k in NOISE_KEYS if k != "a_c"}, []
     for path in runs:
         with h5py.File(path, "r") as f:
             s = f["series"]
@@ -80,8 +83,14 @@ def noise(runs):
             columns["volumetric_strain"].append(s["volumetric_strain"][()])
             p = s["p"][()]
             columns["p_ratio"].append(p / p[0])
-    return {k: float(np.sqrt(np.mean(np.var(_on_first_rows(strains, columns[k]), axis=0, ddof=1))))
-            for k in NOISE_KEYS}
+            fabric.append(f["analysis/sff/a_c"][()])
+    noise = {k: float(np.sqrt(np.mean(np.var(_on_first_rows(strains, c), axis=0, ddof=1))))
+             for k, c in columns.items()}
+    n_snapshots = min(len(a) for a in fabric)
+    sheared = np.array([a[1:n_snapshots] for a in fabric])
+    noise["a_c"] = (float(np.sqrt(np.mean(np.var(sheared, axis=0, ddof=1))))
+                    if n_snapshots > 1 else None)
+    return noise
 
 
 def mean_run_file(runs, target, by):

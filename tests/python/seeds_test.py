@@ -61,6 +61,8 @@ def case(folder, sign):
           f"sign {sign}: eps_v noise {noise['volumetric_strain']} against {expected_v}")
     expected_p = np.sqrt(np.mean((2 * x) ** 2)) / np.sqrt(2)  # p/p0: 1 + x against 1 + 3x
     check(abs(noise["p_ratio"] - expected_p) < 1e-12, f"sign {sign}: p/p0 noise {noise['p_ratio']}")
+    # a_c over the sheared snapshots both runs have (B's one, at 0.1): 0.5 against 0.7.
+    check(abs(noise["a_c"] - 0.2 / np.sqrt(2)) < 1e-12, f"sign {sign}: a_c noise {noise['a_c']}")
     target = os.path.join(folder, f"mean{sign:+.0f}.h5")
     seeds.mean_run_file([a, b], target, "seeds_test.py")
     for left in (".part", ".compact"):
