@@ -7,10 +7,10 @@ usage: bench/calibration/matrix_means.py MEANS FIT [FIT...] [--markdown FILE]
 
 MEANS is the folder of the means and their noise files, MEANS/<specimen>.noise.json
 (scripts/mean_of_seeds.py: OUT/mean of matrix_means.sh, or tests/data/reference/matrix_means);
-each FIT a folder of `sffcal calibrate -o FIT` (ACST, or --model network) on those means. The noise of
-the mean of K seeds is the noise of one run (the RMS over the rows, for a_c over the sheared
-snapshots, of the standard deviation across the seeds) divided by sqrt(K). Undrained tests have eps_v = 0 and are judged in p/p0, for
-which the issue gives no target.
+each FIT a folder of `sffcal calibrate -o FIT` (ACST, or --model network) on those means. The
+noise of the mean of K seeds is the noise of one run (the RMS over the rows, for a_c over the
+sheared snapshots, of the standard deviation across the seeds) divided by sqrt(K). Undrained tests
+have eps_v = 0 and are judged in p/p0, for which the issue gives no target.
 """
 import argparse
 import glob
