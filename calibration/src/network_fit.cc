@@ -332,7 +332,8 @@ TestData with_closing_normal_anisotropy(TestData t) {
       t.a_t.size() != t.a_n.size())
     throw std::runtime_error("test '" + t.name + "' (" + t.source +
                              "): its SFF table lacks the contacts' stress ratio eta or a_t at "
-                             "some snapshot, from which the model's a_n is found");
+                             "some snapshot, from which the contact-network model's a_n is found "
+                             "(run `sffcal sff` again)");
   for (std::size_t k = 0; k < t.a_n.size(); ++k) {
     try {
       t.a_n[k] = sff::concise_normal_anisotropy(t.a_c[k], t.a_t[k], t.snapshot_eta[k]);
