@@ -65,8 +65,9 @@ struct Curve {
 struct FitOptions {
   /// Rate constant times substep strain (substeps_for). 0.2, four times the update's: on the
   /// paper-size runs the paths' q/p then lies within 2.1e-6 of converged ones along the DEM's
-  /// strain path (1.3e-8 at 0.05, 1.7e-5 at 0.4), far below the 6e-4 the predicted path's
-  /// increments leave (test TheFitsPathsAreWithin1e3OfConvergedPaths; docs/network-model.md).
+  /// strain path (1.3e-8 at 0.05, 1.7e-5 at 0.4), far below the 6e-4 to 8.6e-4 the predicted
+  /// path's increments leave (test TheFitsPathsAreWithin1e3OfConvergedPaths;
+  /// docs/network-model.md).
   double substep_size = 0.2;
   /// An increment that needs more RK4 substeps fails (the fit's step is refused, a path stops):
   /// about 400 times what the paper-size runs' fitted rates need per row.
