@@ -16,12 +16,6 @@ constexpr int kJ[6] = {0, 1, 2, 1, 2, 2};
 
 }  // namespace
 
-bool admissible(const State<double>& s) {
-  return std::isfinite(s.void_ratio) && s.void_ratio > 0.0 && std::isfinite(s.coordination) &&
-         s.coordination > 0.0 && std::isfinite(s.lambda) && s.lambda > 0.0 &&
-         s.fabric.allFinite() && s.normal.allFinite() && s.tangential.allFinite();
-}
-
 double lambda_for_mean_stress(const State<double>& network, double p, double youngs_modulus) {
   const double bracket_trace = 1.0 + 2.0 / 15.0 * (network.normal * network.fabric).trace();
   return 3.0 * p * (1.0 + network.void_ratio) /

@@ -4,6 +4,8 @@
 // that recovers synthetic data.
 #include <gtest/gtest.h>
 
+#include <ceres/jet.h>
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -297,6 +299,61 @@ TEST(NetworkModel, RatesAreFrameIndifferent) {
   EXPECT_LT((rt.tangential - rotate(r.tangential)).norm(), 1e-12);
   EXPECT_LT((stress(turned, kDemYoungsModulus) - rotate(stress(s, kDemYoungsModulus))).norm(),
             1e-9);
+}
+
+// The fit integrates triaxial paths on the tensors' diagonals (network_tensor.h): the same laws
+// on a third of the components. On fixed principal axes (a true triaxial state and increment,
+// not only axisymmetric ones) the two forms must give the same end state, stress and parameter
+// derivatives, to rounding, and the full form's off-diagonal components must stay exactly zero.
+TEST(NetworkModel, TheDiagonalFormIsTheFullFormOnFixedPrincipalAxes) {
+  using J = ceres::Jet<double, kNumParameters>;
+  const auto x = to_array(plausible());
+  std::array<J, kNumParameters> seeded;
+  for (int i = 0; i < kNumParameters; ++i) seeded[i] = J(x[i], i);
+  const Parameters<J> p = from_array(seeded.data());
+  auto full = [](double a, double b, double c) {
+    Tensor<J> t = Tensor<J>::Zero();
+    t(0, 0) = J(a), t(1, 1) = J(b), t(2, 2) = J(c);
+    return t;
+  };
+  auto diagonal = [](double a, double b, double c) {
+    return DiagonalTensor<J>{{J(a), J(b), J(c)}};
+  };
+  const State<J> s_full{J(0.62), J(5.4), J(1.1e-3), full(-0.3, -0.1, 0.4),
+                        full(-0.5, 0.1, 0.4), full(-0.02, -0.03, 0.05)};
+  const State<J, DiagonalTensor<J>> s_diagonal{J(0.62), J(5.4), J(1.1e-3),
+                                               diagonal(-0.3, -0.1, 0.4),
+                                               diagonal(-0.5, 0.1, 0.4),
+                                               diagonal(-0.02, -0.03, 0.05)};
+  const double d[3] = {-4e-3, 1e-3, 1e-2};  // true triaxial, dilating
+  const State<J> end_full = integrate(p, s_full, full(d[0], d[1], d[2]), 20);
+  const State<J, DiagonalTensor<J>> end_diagonal =
+      integrate(p, s_diagonal, diagonal(d[0], d[1], d[2]), 20);
+  auto expect_same = [](const J& a, const J& b, const char* what) {
+    EXPECT_NEAR(a.a, b.a, 1e-14 * std::abs(a.a)) << what;
+    EXPECT_LE((a.v - b.v).norm(), 1e-12 * a.v.norm() + 1e-300) << what;
+  };
+  expect_same(end_full.void_ratio, end_diagonal.void_ratio, "e");
+  expect_same(end_full.coordination, end_diagonal.coordination, "Z");
+  expect_same(end_full.lambda, end_diagonal.lambda, "Lambda");
+  const Tensor<J> sigma_full = stress(end_full, kDemYoungsModulus);
+  const DiagonalTensor<J> sigma_diagonal = stress(end_diagonal, kDemYoungsModulus);
+  for (int i = 0; i < 3; ++i) {
+    expect_same(end_full.fabric(i, i), end_diagonal.fabric.d[i], "A");
+    expect_same(end_full.normal(i, i), end_diagonal.normal.d[i], "F");
+    expect_same(end_full.tangential(i, i), end_diagonal.tangential.d[i], "F^t");
+    expect_same(sigma_full(i, i), sigma_diagonal.d[i], "sigma");
+    for (int j = 0; j < 3; ++j) {
+      if (i == j) continue;
+      for (const Tensor<J>* t : {&end_full.fabric, &end_full.normal, &end_full.tangential,
+                                 &sigma_full}) {
+        EXPECT_EQ((*t)(i, j).a, 0.0);
+        EXPECT_EQ((*t)(i, j).v.norm(), 0.0);
+      }
+    }
+  }
+  // The state changed (a test of something): the fabric by more than rounding.
+  EXPECT_GT(std::abs(end_diagonal.fabric.d[2].a - 0.4), 1e-3);
 }
 
 // A synthetic test: the model's own prediction from an initial state, with the DEM's columns.

@@ -32,12 +32,6 @@ Tensor<T> axisymmetric(const T& x) {
   return t;
 }
 
-/// t(X) = X_zz - (X_xx + X_yy)/2 (sff-theory.md §3).
-template <typename T>
-T triaxial_part(const Tensor<T>& x) {
-  return x(2, 2) - T(0.5) * (x(0, 0) + x(1, 1));
-}
-
 /// The test as the contact-network model reads it: each snapshot's a_n replaced by the
 /// normal-force anisotropy with which the SFF equation of the snapshot's a_c and a_t gives its
 /// contacts' stress ratio (sff::concise_normal_anisotropy). The model's stress is the SFF equation

@@ -7,7 +7,9 @@
 //
 // Conventions: compression positive (stress, strain, strain increment), stress in Pa, tensor
 // shear components. A, F and F^t are deviatoric. Templated on the scalar type (double or a
-// forward-mode dual number such as ceres::Jet) like acst_model.h; this header needs only Eigen.
+// forward-mode dual number such as ceres::Jet) like acst_model.h, and on the tensors' form (a 3x3
+// matrix, or a diagonal for paths with fixed principal axes: network_tensor.h); this header needs
+// only Eigen.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,10 +21,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace calibration::network {
+#include "calibration/network_tensor.h"
 
-template <typename T>
-using Tensor = Eigen::Matrix<T, 3, 3>;
+namespace calibration::network {
 
 /// The reference normal force of the critical coordination line (Eq. N4): Lambda_ref = 1e-3, the
 /// order of Lambda at 100-300 kPa in the DEM (docs/sff-results.md).
@@ -30,11 +31,12 @@ inline constexpr double kLambdaReference = 1e-3;
 
 /// The state of a material point: void ratio e, coordination Z = 2 N_c / N_p, mean normalised
 /// normal force Lambda, and the deviatoric fabric A, normal-force F and tangential-force F^t
-/// anisotropy tensors, all as sff-theory.md §1-3 defines them.
-template <typename T>
+/// anisotropy tensors, all as sff-theory.md §1-3 defines them. M is the tensors' form: a 3x3
+/// matrix, or DiagonalTensor<T> where the principal axes stay fixed (network_tensor.h).
+template <typename T, typename M = Tensor<T>>
 struct State {
   T void_ratio, coordination, lambda;
-  Tensor<T> fabric, normal, tangential;
+  M fabric, normal, tangential;
 };
 
 /// The fitted parameters (docs/network-model.md, Eqs. N1-N8), all dimensionless. Unset is NaN.
@@ -179,15 +181,14 @@ void write_parameters_json(const Parameters<double>& par, double youngs_modulus,
 
 /// The SFF equation (sff-theory.md §4, He & Cai 2019 eq. C0) for the model's state; the grain
 /// modulus E [Pa] is the DEM's (the normalisation of Lambda).
-template <typename T>
-Tensor<T> stress(const State<T>& s, double youngs_modulus) {
-  const Tensor<T>& A = s.fabric;
-  const Tensor<T>& F = s.normal;
-  const Tensor<T> FA = F * A;
-  const Tensor<T> sym_FA = T(0.5) * (FA + FA.transpose());
-  Tensor<T> bracket = T(2.0 / 15.0) * (A + F) + T(8.0 / 105.0) * sym_FA + s.tangential;
-  const T isotropic = T(1.0 / 3.0) + T(2.0 / 105.0) * FA.trace();
-  for (int i = 0; i < 3; ++i) bracket(i, i) += isotropic;
+template <typename T, typename M>
+M stress(const State<T, M>& s, double youngs_modulus) {
+  const M& A = s.fabric;
+  const M& F = s.normal;
+  const M sym_FA = symmetric_product(F, A);
+  const M bracket = plus_isotropic<T>(
+      T(2.0 / 15.0) * (A + F) + T(8.0 / 105.0) * sym_FA + s.tangential,
+      T(1.0 / 3.0) + T(2.0 / 105.0) * trace(sym_FA));
   return (T(youngs_modulus) * s.coordination * s.lambda / (T(1.0) + s.void_ratio)) * bracket;
 }
 
@@ -230,12 +231,12 @@ T stiffness_factor(const Parameters<T>& par, const T& log_force) {
 /// cos 3 theta = sqrt(6) tr n^3 clamped to [-1, 1]: 1 in triaxial compression, c in extension
 /// (the interpolation ACST uses for M, docs/model.md Eq. 4, after Dafalias & Manzari 2004
 /// Eq. 16). 1 without shear (its target term vanishes then).
-template <typename T>
-T lode_factor(const T& c, const Tensor<T>& deviator, const T& shear_squared) {
+template <typename T, typename M>
+T lode_factor(const T& c, const M& deviator, const T& shear_squared) {
   using std::sqrt;
   if (!(shear_squared > T(0.0))) return T(1.0);
   const T norm = sqrt(shear_squared);
-  T cos3 = T(std::sqrt(6.0)) * (deviator * deviator * deviator).trace() / (norm * norm * norm);
+  T cos3 = T(std::sqrt(6.0)) * trace_of_cube(deviator) / (norm * norm * norm);
   if (cos3 > T(1.0)) cos3 = T(1.0);
   if (cos3 < T(-1.0)) cos3 = T(-1.0);
   return T(2.0) * c / ((T(1.0) + c) - (T(1.0) - c) * cos3);
@@ -244,15 +245,14 @@ T lode_factor(const T& c, const Tensor<T>& deviator, const T& shear_squared) {
 /// The rate of the state for the strain rate d (compression positive), Eqs. N1-N8: the rates are
 /// homogeneous of degree one in d, so a linear strain increment is integrated over a unit
 /// pseudo-time with d = the increment.
-template <typename T>
-State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
+template <typename T, typename M>
+State<T, M> rate(const Parameters<T>& par, const State<T, M>& s, const M& d) {
   using std::exp;
   using std::sqrt;
-  const T volumetric = d.trace();
-  Tensor<T> deviator = d;
-  for (int i = 0; i < 3; ++i) deviator(i, i) -= volumetric / T(3.0);
+  const T volumetric = trace(d);
+  const M deviator = plus_isotropic<T>(d, -(volumetric / T(3.0)));
   // eps_q rate = sqrt(2/3 d_s:d_s), with no derivative singularity at a pure volume change.
-  const T shear_squared = (deviator.array() * deviator.array()).sum();
+  const T shear_squared = contract(deviator, deviator);
   const T shear = shear_squared > T(0.0) ? sqrt(T(2.0 / 3.0) * shear_squared) : T(0.0);
   const T critical = critical_coordination(par, s.lambda);
   const T excess = (s.coordination - critical) / critical;  // Eq. N3: over-coordination xi
@@ -268,11 +268,11 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   // targets' state of N2c, (2/3) d_s = eps_q-rate times the unit triaxial direction (t(.) = 1 in
   // compression).
   auto towards = [&](const T& critical_norm, const T& slope, const T& rate_constant,
-                     const Tensor<T>& x) -> Tensor<T> {
+                     const M& x) -> M {
     return rate_constant * speed *
            (T(2.0 / 3.0) * (critical_norm + slope * target_state) * deviator - shear * x);
   };
-  State<T> r;
+  State<T, M> r;
   r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
   r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric);
   r.normal = towards(par.f_cs, par.f_z, par.k_f, s.normal);
@@ -285,7 +285,7 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   // network's contraction stops at its line (d_psi = 0: none, the model before it bit for bit).
   const T dilatancy_rate =
       par.d_z * excess * shear +
-      par.d_a * ((s.fabric.array() * deviator.array()).sum() - par.a_cs * shear) +
+      par.d_a * (contract(s.fabric, deviator) - par.a_cs * shear) +
       par.d_psi * below_line * shear;
   // Eq. N6: d ln Lambda = (Lambda / Lambda_ref)^(n_kappa - 1) (kappa / 3) (d_v + D eps_q).
   const T log_lambda_rate =
@@ -299,8 +299,8 @@ State<T> rate(const Parameters<T>& par, const State<T>& s, const Tensor<T>& d) {
   return r;
 }
 
-template <typename T>
-State<T> add_scaled(const State<T>& s, const State<T>& r, const T& h) {
+template <typename T, typename M>
+State<T, M> add_scaled(const State<T, M>& s, const State<T, M>& r, const T& h) {
   return {s.void_ratio + h * r.void_ratio, s.coordination + h * r.coordination,
           s.lambda + h * r.lambda,         s.fabric + h * r.fabric,
           s.normal + h * r.normal,         s.tangential + h * r.tangential};
@@ -309,17 +309,17 @@ State<T> add_scaled(const State<T>& s, const State<T>& r, const T& h) {
 /// Integrates a linear strain increment (compression positive) with `substeps` classical
 /// fourth-order Runge-Kutta steps. The substep count is the caller's, so that a Newton iteration
 /// on the increment sees one smooth function (substeps_for gives the usual choice).
-template <typename T>
-State<T> integrate(const Parameters<T>& par, const State<T>& start, const Tensor<T>& increment,
-                   int substeps) {
+template <typename T, typename M>
+State<T, M> integrate(const Parameters<T>& par, const State<T, M>& start, const M& increment,
+                      int substeps) {
   const T h = T(1.0 / substeps);
-  State<T> s = start;
+  State<T, M> s = start;
   for (int k = 0; k < substeps; ++k) {
-    const State<T> k1 = rate(par, s, increment);
-    const State<T> k2 = rate(par, add_scaled(s, k1, T(0.5) * h), increment);
-    const State<T> k3 = rate(par, add_scaled(s, k2, T(0.5) * h), increment);
-    const State<T> k4 = rate(par, add_scaled(s, k3, h), increment);
-    State<T> sum = add_scaled(add_scaled(add_scaled(k1, k2, T(2.0)), k3, T(2.0)), k4, T(1.0));
+    const State<T, M> k1 = rate(par, s, increment);
+    const State<T, M> k2 = rate(par, add_scaled(s, k1, T(0.5) * h), increment);
+    const State<T, M> k3 = rate(par, add_scaled(s, k2, T(0.5) * h), increment);
+    const State<T, M> k4 = rate(par, add_scaled(s, k3, h), increment);
+    State<T, M> sum = add_scaled(add_scaled(add_scaled(k1, k2, T(2.0)), k3, T(2.0)), k4, T(1.0));
     s = add_scaled(s, sum, h / T(6.0));
   }
   return s;
@@ -334,8 +334,9 @@ inline constexpr double kUpdateSubstepSize = 0.05;
 /// be ln Lambda's through Z_c(Lambda), Z and e_c(Lambda) in the dilatancy, kappa' (|d_z| zeta (1 +
 /// c_l Z/Z_c) + |d_a| + d_psi lambda_e) / 3, kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1)
 /// the stiffness of ln Lambda (N6).
-inline int substeps_for(const Parameters<double>& par, const State<double>& at,
-                        double strain_norm, double step_size = kUpdateSubstepSize) {
+template <typename M>
+int substeps_for(const Parameters<double>& par, const State<double, M>& at, double strain_norm,
+                 double step_size = kUpdateSubstepSize) {
   const double critical = critical_coordination(par, at.lambda);
   const double excess = (at.coordination - critical) / critical;
   const double speed = std::exp(std::min(par.n_r * excess, 30.0));

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <string>
 
 #include "calibration/network_model.h"
@@ -37,7 +38,12 @@ UpdateResult update_with_tangent(const Parameters<double>& par, const State<doub
                                  int max_substeps = kMaxUpdateSubsteps);
 
 /// True where the state can carry a stress: e, Z, Lambda positive and everything finite.
-bool admissible(const State<double>& s);
+template <typename M>
+bool admissible(const State<double, M>& s) {
+  return std::isfinite(s.void_ratio) && s.void_ratio > 0.0 && std::isfinite(s.coordination) &&
+         s.coordination > 0.0 && std::isfinite(s.lambda) && s.lambda > 0.0 &&
+         all_finite(s.fabric) && all_finite(s.normal) && all_finite(s.tangential);
+}
 
 /// Lambda such that the SFF stress (network_model.h) of the network (e, Z, A, F) has the mean
 /// stress p [Pa]: p = E Z Lambda (1 + (2/15) tr(FA)) / (3 (1 + e)), a third of the trace of
