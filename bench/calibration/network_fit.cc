@@ -4,9 +4,10 @@
 // run file (.h5) analysed by `sffcal sff`.
 //
 // usage: network_fit FITTED... [--hold-out HELD...] [--threads N] [--starts N] [--hold NAME]...
-//                    [--predicted-only] [--substep-size S] --out DIR
+//                    [--predicted-only] [--substep-size S] [--anisotropy-scale S] --out DIR
 //   (--hold NAME: the parameter held at its start value, e.g. c_t at 1: no Lode dependence;
-//    --substep-size: FitOptions::substep_size, for timing the fit against its paths' error)
+//    --substep-size: FitOptions::substep_size, for timing the fit against its paths' error;
+//    --anisotropy-scale: FitOptions::anisotropy_scale, the weight of a_c and a_n in the fit)
 //   e.g. build/bench/network_fit dense_100kPa loose_200kPa --hold-out dense_300kPa --out out/n1
 // Writes what `sffcal calibrate --model network` writes (network::write_fit_outputs: the
 // parameter file with the fit's record, <name>_network.csv per test, summary.md) into DIR, which
@@ -47,6 +48,8 @@ int main(int argc, char** argv) {
         options.first_stage = false;
       } else if (a == "--substep-size" && k + 1 < argc) {
         options.substep_size = std::atof(argv[++k]);
+      } else if (a == "--anisotropy-scale" && k + 1 < argc) {
+        options.anisotropy_scale = std::atof(argv[++k]);
       } else if (a == "--out" && k + 1 < argc) {
         out_dir = argv[++k];
       } else {
@@ -56,9 +59,11 @@ int main(int argc, char** argv) {
     if (fitted.empty() || out_dir.empty()) {
       std::fprintf(stderr, "usage: network_fit FITTED... [--hold-out HELD...] [--threads N] "
                            "[--starts N] [--hold NAME]... [--predicted-only] [--substep-size S] "
-                           "--out DIR\n");
+                           "[--anisotropy-scale S] --out DIR\n");
       return 2;
     }
+    if (!(options.anisotropy_scale > 0.0) || !(options.substep_size > 0.0))
+      throw std::runtime_error("--anisotropy-scale and --substep-size must be positive numbers");
     if (std::filesystem::exists(out_dir))
       throw std::runtime_error("output folder " + out_dir + " exists (not overwritten)");
     std::vector<calibration::TestData> fit_tests = bench::read_reference_tests(fitted),
