@@ -45,7 +45,8 @@ UpdateResult update_with_tangent(const Parameters<double>& par, const State<doub
   auto lift = [](double x) { return Dual(x); };
   const State<Dual> s0{lift(start.void_ratio),       lift(start.coordination),
                        lift(start.lambda),           start.fabric.unaryExpr(lift),
-                       start.normal.unaryExpr(lift), start.tangential.unaryExpr(lift)};
+                       start.normal.unaryExpr(lift), start.tangential.unaryExpr(lift),
+                       start.inherent.unaryExpr(lift)};
   const auto values = to_array(par);
   std::array<Dual, kNumParameters> par_dual;
   for (int i = 0; i < kNumParameters; ++i) par_dual[i] = Dual(values[i]);
@@ -53,7 +54,8 @@ UpdateResult update_with_tangent(const Parameters<double>& par, const State<doub
   auto value = [](const Dual& x) { return x.a; };
   const State<double> end{s1.void_ratio.a,           s1.coordination.a,
                           s1.lambda.a,               s1.fabric.unaryExpr(value),
-                          s1.normal.unaryExpr(value), s1.tangential.unaryExpr(value)};
+                          s1.normal.unaryExpr(value), s1.tangential.unaryExpr(value),
+                          s1.inherent.unaryExpr(value)};
   if (!admissible(end)) {
     std::ostringstream why;
     why << "contact-network update: the state left its admissible range (e " << end.void_ratio

@@ -40,15 +40,15 @@ Material material_from_props(const double* props, int nprops) {
                              ": give 20 (the initial network; E and the parameters from "
                              "SFFCAL_NETWORK_PARAMETERS), 39 (with E and the first 18 parameters), "
                              "40 (and c_t), 41 (and c_l), 42 (and n_kappa), 43 to 45 (and "
-                             "d_psi, e_gamma, lambda_e) or 46 (and w_psi)");
+                             "d_psi, e_gamma, lambda_e), 46 (and w_psi) or 47 (and r_i)");
   Material m;
   m.youngs_modulus = props[SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS];
   if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus))
     throw std::runtime_error("PROPS(21), the grains' Young's modulus E = " +
                              std::to_string(m.youngs_modulus) + " Pa, must be > 0");
   // PROPS(22..39), the first version's 18 parameters, then c_t (PROPS(40)), c_l (PROPS(41)),
-  // n_kappa (PROPS(42)), d_psi, e_gamma and lambda_e (PROPS(43..45)), w_psi (PROPS(46)) where
-  // given.
+  // n_kappa (PROPS(42)), d_psi, e_gamma and lambda_e (PROPS(43..45)), w_psi (PROPS(46)), r_i
+  // (PROPS(47)) where given.
   double values[net::kNumParameters];
   for (int i = 0; i < net::kNumParameters; ++i)
     values[i] = SFFCAL_UMAT_NETWORK_PROP_PARAMETERS + i < nprops
@@ -87,6 +87,7 @@ net::State<double> initial_state(const double* props, const Eigen::Matrix3d& str
                                    "normal-force anisotropy F");
   s.tangential = deviatoric_from_props(props, SFFCAL_UMAT_NETWORK_PROP_TANGENTIAL,
                                        "tangential-force anisotropy F^t");
+  s.inherent = s.fabric;  // the specimen's initial fabric is all its own (Eq. N2d)
   const double p = stress.trace() / 3.0;
   if (!(p > 0.0))
     throw std::runtime_error("the initial STRESS must be compressive (mean stress " +
@@ -101,7 +102,8 @@ net::State<double> state_from_statev(const double* statev) {
           statev[SFFCAL_UMAT_NETWORK_STATE_LAMBDA],
           from_abaqus(statev + SFFCAL_UMAT_NETWORK_STATE_FABRIC, 6, 1.0, 1.0),
           from_abaqus(statev + SFFCAL_UMAT_NETWORK_STATE_NORMAL, 6, 1.0, 1.0),
-          from_abaqus(statev + SFFCAL_UMAT_NETWORK_STATE_TANGENTIAL, 6, 1.0, 1.0)};
+          from_abaqus(statev + SFFCAL_UMAT_NETWORK_STATE_TANGENTIAL, 6, 1.0, 1.0),
+          from_abaqus(statev + SFFCAL_UMAT_NETWORK_STATE_INHERENT, 6, 1.0, 1.0)};
 }
 
 void state_to_statev(const net::State<double>& s, double* statev) {
@@ -111,6 +113,7 @@ void state_to_statev(const net::State<double>& s, double* statev) {
   to_abaqus(s.fabric, statev + SFFCAL_UMAT_NETWORK_STATE_FABRIC, 6, 1.0);
   to_abaqus(s.normal, statev + SFFCAL_UMAT_NETWORK_STATE_NORMAL, 6, 1.0);
   to_abaqus(s.tangential, statev + SFFCAL_UMAT_NETWORK_STATE_TANGENTIAL, 6, 1.0);
+  to_abaqus(s.inherent, statev + SFFCAL_UMAT_NETWORK_STATE_INHERENT, 6, 1.0);
 }
 
 }  // namespace

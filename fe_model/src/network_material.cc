@@ -41,8 +41,10 @@ net::State<double> NetworkMaterial::to_model(const PointState& state) {
   const auto& v = state.internal_variables;
   if (v.size() != kNumInternalVariables)
     throw std::logic_error("NetworkMaterial: point state has " + std::to_string(v.size()) +
-                           " internal variables, expected 30 (not a contact-network state?)");
-  return {v[0], v[1], v[2], unpack(v, 3), unpack(v, 12), unpack(v, 21)};
+                           " internal variables, expected " +
+                           std::to_string(kNumInternalVariables) +
+                           " (not a contact-network state?)");
+  return {v[0], v[1], v[2], unpack(v, 3), unpack(v, 12), unpack(v, 21), unpack(v, 30)};
 }
 
 void NetworkMaterial::from_model(const net::State<double>& model, const SymmetricTensor2& strain,
@@ -57,6 +59,7 @@ void NetworkMaterial::from_model(const net::State<double>& model, const Symmetri
   pack(model.fabric, v, 3);
   pack(model.normal, v, 12);
   pack(model.tangential, v, 21);
+  pack(model.inherent, v, 30);
 }
 
 PointState NetworkMaterial::initial_state(const SymmetricTensor2& initial_stress) const {
@@ -64,8 +67,10 @@ PointState NetworkMaterial::initial_state(const SymmetricTensor2& initial_stress
   if (!(p > 0.0))
     throw std::invalid_argument("NetworkMaterial: the initial mean stress must be compressive (p = " +
                                 std::to_string(p) + " Pa)");
-  net::State<double> model{initial_.void_ratio, initial_.coordination, 0.0, initial_.fabric,
-                           initial_.normal, initial_.tangential};
+  // The initial fabric is all the specimen's own (its inherent part, Eq. N2d).
+  net::State<double> model{initial_.void_ratio, initial_.coordination, 0.0,
+                           initial_.fabric,     initial_.normal,       initial_.tangential,
+                           initial_.fabric};
   model.lambda = net::lambda_for_mean_stress(model, p, youngs_modulus_);
   PointState state;
   from_model(model, SymmetricTensor2(), state);

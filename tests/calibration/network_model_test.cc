@@ -278,6 +278,34 @@ TEST(NetworkModel, AnAnisotropyRelaxesExponentiallyInShearStrain) {
   EXPECT_NEAR(end.lambda, s.lambda, 1e-15);
 }
 
+TEST(NetworkModel, TheInherentFabricFadesAtItsOwnRate) {
+  // As above, with an inherent part A_i0 fading at r_i k_a (Eq. N2d): A_i = A_i0 exp(-r_i k_a
+  // eps_q) and a(eps_q) = a_cs + (a_0 - a_cs - a_i0) exp(-k_a eps_q) + a_i0 exp(-r_i k_a eps_q).
+  Parameters<double> p = plausible();
+  p.d_z = p.d_a = 0.0;
+  p.r_i = 0.2;
+  State<double> s = critical_state(p, 1e-3);
+  s.fabric = axisymmetric(-0.2);
+  s.inherent = axisymmetric(0.25);
+  const double eps_q = 0.08;
+  const Tensor<double> d = isochoric_compression(eps_q);
+  const int substeps = substeps_for(p, s, d.norm());
+  const State<double> end = integrate(p, s, d, substeps);
+  const double fade = std::exp(-p.r_i * p.k_a * eps_q), relax = std::exp(-p.k_a * eps_q);
+  EXPECT_NEAR(triaxial_part(end.inherent), 0.25 * fade, 1e-9);
+  EXPECT_NEAR(triaxial_part(end.fabric), p.a_cs + (-0.2 - p.a_cs - 0.25) * relax + 0.25 * fade,
+              1e-9);
+  // The memory shows: the fabric lies above the law without it by most of a_i0 here.
+  EXPECT_GT(triaxial_part(end.fabric) - (p.a_cs + (-0.2 - p.a_cs) * relax), 0.1);
+  // r_i = 1, or no inherent part: the law before N2d, bit for bit.
+  p.r_i = 1.0;
+  const State<double> fading = integrate(p, s, d, substeps);
+  s.inherent = Tensor<double>::Zero();
+  const State<double> without = integrate(p, s, d, substeps);
+  EXPECT_EQ(fading.fabric, without.fabric);
+  EXPECT_EQ(fading.lambda, without.lambda);
+}
+
 TEST(NetworkModel, RatesAreFrameIndifferent) {
   const Parameters<double> p = plausible();
   std::mt19937_64 random(11);
@@ -357,8 +385,10 @@ TEST(NetworkModel, TheDiagonalFormIsTheFullFormOnFixedPrincipalAxes) {
 }
 
 // A synthetic test: the model's own prediction from an initial state, with the DEM's columns.
+// a_c0: the initial fabric's a_c (all of it inherent, Eq. N2d).
 TestData synthetic_test(const Parameters<double>& p, const std::string& name, double e0,
-                        double z0, double lambda0, TestPath path, int rows, double end_strain) {
+                        double z0, double lambda0, TestPath path, int rows, double end_strain,
+                        double a_c0 = 0.0) {
   TestData t;
   t.name = name;
   t.source = "synthetic";
@@ -372,7 +402,7 @@ TestData synthetic_test(const Parameters<double>& p, const std::string& name, do
   }
   for (int k = 0; k < rows; k += 4) t.snapshot_axial_strain.push_back(t.axial_strain[k]);
   const std::size_t m = t.snapshot_axial_strain.size();
-  t.a_c.assign(m, 0.0);
+  t.a_c.assign(m, a_c0);
   t.a_n.assign(m, 0.0);
   t.mobilisation.assign(m, 0.0);
   t.snapshot_eta.assign(m, 0.0);
@@ -511,7 +541,9 @@ TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
   p.c_t = 0.7;
   p.n_kappa = 0.4;  // n_kappa's column away from 1, where its factor is exp(0)
   p.w_psi = 0.8;    // w_psi's column inside its range
-  const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4, true, 25, 0.12);
+  p.r_i = 0.3;      // r_i's column inside its range, seen through the dense test's initial fabric
+  const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4,
+                                        TestPath::kDrainedCompression, 25, 0.12, 0.2);
   const TestData undrained = synthetic_test(p, "loose_undrained", 0.73, 4.4, 7e-4, false, 25, 0.08);
   const TestData extension =
       synthetic_test(p, "dense_extension", 0.58, 6.7, 4.5e-4, TestPath::kDrainedExtension, 25, 0.12);
@@ -594,9 +626,11 @@ TestData with_noise(TestData t, double size, std::mt19937_64& random) {
   return t;
 }
 
-// The parameters a fit of drained compressions at one pressure holds: c_t, c_l, n_kappa, lambda_e.
-const std::array<int, 4> kHeldByTwoDrainedTests = {kLodeFactorIndex, kLambdaGainIndex,
-                                                   kLambdaExponentIndex, kCriticalSlopeIndex};
+// The parameters a fit of drained compressions at one pressure from isotropic fabrics holds: c_t,
+// c_l, n_kappa, lambda_e and r_i.
+const std::array<int, 5> kHeldByTwoDrainedTests = {kLodeFactorIndex, kLambdaGainIndex,
+                                                   kLambdaExponentIndex, kCriticalSlopeIndex,
+                                                   kInherentFadeIndex};
 
 // A dense and a loose drained compression at one pressure (21 rows to 15 %).
 std::vector<TestData> dense_and_loose(const Parameters<double>& p) {
@@ -677,14 +711,15 @@ TEST(NetworkModel, StandardErrorsMatchTheSpreadOfRefitsToNoisyData) {
     ASSERT_TRUE(result.errors.estimated);
     EXPECT_TRUE(std::isnan(result.errors.independent[kTargetVoidRatioWeightIndex]));
     EXPECT_EQ(result.parameters.w_psi, truth.w_psi);
-    // c_t, held without an extension test, c_l and n_kappa, held without an undrained one, and
-    // lambda_e, held at one pressure, have none.
+    // c_t, held without an extension test, c_l and n_kappa, held without an undrained one,
+    // lambda_e, held at one pressure, and r_i, held without an initial fabric, have none.
     for (int held : kHeldByTwoDrainedTests)
       EXPECT_TRUE(std::isnan(result.errors.independent[held])) << parameter_names()[held];
     EXPECT_EQ(result.parameters.c_t, truth.c_t);
     EXPECT_EQ(result.parameters.c_l, truth.c_l);
     EXPECT_EQ(result.parameters.n_kappa, truth.n_kappa);
     EXPECT_EQ(result.parameters.lambda_e, truth.lambda_e);
+    EXPECT_EQ(result.parameters.r_i, truth.r_i);
     estimates.push_back(to_array(result.parameters));
     for (int i = 0; i < kNumParameters; ++i) {
       mean_error[i] += result.errors.independent[i] / kRefits;

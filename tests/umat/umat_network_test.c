@@ -31,7 +31,7 @@ static void axisymmetric(double x, double* props) {
   props[3] = props[4] = props[5] = 0.0;
 }
 
-/* youngs_and_parameters: E then the 24 parameters (PROPS 21..45). */
+/* youngs_and_parameters: E then the 26 parameters (PROPS 21..47). */
 static Point make_point(const double* youngs_and_parameters, int ntens, int nprops) {
   Point pt;
   memset(&pt, 0, sizeof pt);
@@ -180,6 +180,10 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
   added_parameter_acts(youngs_and_parameters, ct + 6, 0.0, 1.0, compression,
                        "NPROPS = 45 is w_psi = 0; w_psi = 1 in PROPS(46) changes a compression "
                        "step, |dS33| [Pa]");
+  /* PROPS(47), r_i (Eq. N2d): the initial fabric, all inherent, kept in a compression step. */
+  added_parameter_acts(youngs_and_parameters, ct + 7, 1.0, 0.0, compression,
+                       "NPROPS = 46 is r_i = 1; r_i = 0 in PROPS(47) changes a compression step, "
+                       "|dS33| [Pa]");
 
   /* The name chooses the entry in any case; another name goes to ACST, which refuses these
    * PROPS (its parameters, PROPS(8..22), would be the anisotropies and E here). */

@@ -43,7 +43,8 @@ Tensor<T> axisymmetric(const T& x) {
 TestData with_closing_normal_anisotropy(TestData test);
 
 /// The state of the test's first snapshot (axisymmetric about z) with the void ratio of its first
-/// series row. Throws std::runtime_error naming the test when its data lack Z, Lambda or a_t.
+/// series row; the initial fabric is all inherent (Eq. N2d). Throws std::runtime_error naming the
+/// test when its data lack Z, Lambda or a_t.
 State<double> initial_state(const TestData& test);
 
 /// The model along one test, at the union of the DEM's series rows and snapshots (in axial strain

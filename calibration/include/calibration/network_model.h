@@ -31,12 +31,15 @@ inline constexpr double kLambdaReference = 1e-3;
 
 /// The state of a material point: void ratio e, coordination Z = 2 N_c / N_p, mean normalised
 /// normal force Lambda, and the deviatoric fabric A, normal-force F and tangential-force F^t
-/// anisotropy tensors, all as sff-theory.md §1-3 defines them. M is the tensors' form: a 3x3
+/// anisotropy tensors, all as sff-theory.md §1-3 defines them, and the fabric's inherent part:
+/// the memory of the specimen's initial fabric within A, which fades more slowly than the part
+/// the loading builds (Eq. N2d; zero: none, the law before it). M is the tensors' form: a 3x3
 /// matrix, or DiagonalTensor<T> where the principal axes stay fixed (network_tensor.h).
 template <typename T, typename M = Tensor<T>>
 struct State {
   T void_ratio, coordination, lambda;
   M fabric, normal, tangential;
+  M inherent = M::Zero();
 };
 
 /// The fitted parameters (docs/network-model.md, Eqs. N1-N8), all dimensionless. Unset is NaN.
@@ -71,11 +74,14 @@ struct Parameters {
   /// The void ratio's weight in the anisotropies' targets (N2c): they follow xi - w_psi (e - e_c)
   /// instead of xi alone; 0 (the coordination's excess alone) in files written before it.
   T w_psi = unset();
+  /// The rate at which the fabric's inherent part fades, as a share of k_a (N2d), r_i in [0, 1];
+  /// 1 (the inherent part fades with the rest of A: the law before it) in files written before it.
+  T r_i = unset();
 };
 
-inline constexpr int kNumParameters = 25;
+inline constexpr int kNumParameters = 26;
 /// The parameters added after the first version come at the end of the order (c_t, c_l, n_kappa,
-/// d_psi, e_gamma, lambda_e, w_psi).
+/// d_psi, e_gamma, lambda_e, w_psi, r_i).
 inline constexpr int kNumFirstVersionParameters = 18;
 inline constexpr int kLodeFactorIndex = 18;
 inline constexpr int kLambdaGainIndex = 19;
@@ -84,11 +90,13 @@ inline constexpr int kStateDilatancyIndex = 21;
 inline constexpr int kCriticalVoidRatioIndex = 22;
 inline constexpr int kCriticalSlopeIndex = 23;
 inline constexpr int kTargetVoidRatioWeightIndex = 24;
+inline constexpr int kInherentFadeIndex = 25;
 /// The value of an added parameter (index >= kNumFirstVersionParameters) in a parameter file or
 /// UMAT PROPS that does not give it: the model as it was before the parameter was added (c_t = 1,
 /// no Lode dependence; c_l = 0, no gain of contacts with the normal force; n_kappa = 1, ln Lambda
 /// linear in the strain; d_psi = 0, no critical void ratio line, whose e_gamma and lambda_e then
-/// do nothing: 0.8 and 0, values within their bounds; w_psi = 0, targets in xi alone).
+/// do nothing: 0.8 and 0, values within their bounds; w_psi = 0, targets in xi alone; r_i = 1,
+/// the inherent fabric fading with the rest).
 inline double value_if_absent(int index) {
   switch (index) {
     case kLambdaGainIndex:
@@ -107,7 +115,7 @@ inline const std::array<const char*, kNumParameters>& parameter_names() {
   static const std::array<const char*, kNumParameters> names = {{
       "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
       "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z", "c_t",
-      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e", "w_psi"}};
+      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e", "w_psi", "r_i"}};
   return names;
 }
 
@@ -115,7 +123,7 @@ template <typename T>
 std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
   return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
           p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z, p.c_t,
-          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e, p.w_psi}};
+          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e, p.w_psi, p.r_i}};
 }
 
 template <typename T>
@@ -126,6 +134,7 @@ Parameters<T> from_array(const T* x) {
   p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
   p.n_z = x[17], p.c_t = x[18], p.c_l = x[19], p.n_kappa = x[20];
   p.d_psi = x[21], p.e_gamma = x[22], p.lambda_e = x[23], p.w_psi = x[24];
+  p.r_i = x[25];
   return p;
 }
 
@@ -139,7 +148,7 @@ inline Parameters<double> lower_bounds() {
   p.t_cs = 0.0, p.t_z = -1.0, p.k_t = 1.0;
   p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
   p.c_t = 0.2, p.c_l = 0.0, p.n_kappa = 0.0;
-  p.d_psi = 0.0, p.e_gamma = 0.3, p.lambda_e = 0.0, p.w_psi = 0.0;
+  p.d_psi = 0.0, p.e_gamma = 0.3, p.lambda_e = 0.0, p.w_psi = 0.0, p.r_i = 0.0;
   return p;
 }
 
@@ -151,7 +160,7 @@ inline Parameters<double> upper_bounds() {
   p.t_cs = 0.5, p.t_z = 1.0, p.k_t = 5000.0;
   p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
   p.c_t = 2.0, p.c_l = 1.0, p.n_kappa = 1.0;
-  p.d_psi = 30.0, p.e_gamma = 1.5, p.lambda_e = 0.3, p.w_psi = 10.0;
+  p.d_psi = 30.0, p.e_gamma = 1.5, p.lambda_e = 0.3, p.w_psi = 10.0, p.r_i = 1.0;
   return p;
 }
 
@@ -274,7 +283,13 @@ State<T, M> rate(const Parameters<T>& par, const State<T, M>& s, const M& d) {
   };
   State<T, M> r;
   r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
-  r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric);
+  // Eq. N2d: the fabric's inherent part A_i fades r_i times as fast as the rest, dA_i = -r_i k_a
+  // exp(n_r xi) eps_q-rate A_i, and A relaxes towards its target plus what is left of it: under
+  // a fixed target A = target (1 - exp(-k eps_q)) + A_i0 exp(-r_i k eps_q). r_i = 1 or A_i = 0:
+  // the law before it, bit for bit.
+  r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric) +
+             (par.k_a * speed * shear * (T(1.0) - par.r_i)) * s.inherent;
+  r.inherent = (-(par.r_i * par.k_a * speed * shear)) * s.inherent;
   r.normal = towards(par.f_cs, par.f_z, par.k_f, s.normal);
   // Eq. N2b: the tangential anisotropy's target depends on the Lode angle of shearing (in the
   // DEM its critical norm in extension is about two thirds of that in compression).
@@ -303,7 +318,8 @@ template <typename T, typename M>
 State<T, M> add_scaled(const State<T, M>& s, const State<T, M>& r, const T& h) {
   return {s.void_ratio + h * r.void_ratio, s.coordination + h * r.coordination,
           s.lambda + h * r.lambda,         s.fabric + h * r.fabric,
-          s.normal + h * r.normal,         s.tangential + h * r.tangential};
+          s.normal + h * r.normal,         s.tangential + h * r.tangential,
+          s.inherent + h * r.inherent};
 }
 
 /// Integrates a linear strain increment (compression positive) with `substeps` classical

@@ -21,6 +21,8 @@ using Tensor = Eigen::Matrix<T, 3, 3>;
 template <typename T>
 struct DiagonalTensor {
   std::array<T, 3> d;
+
+  static DiagonalTensor Zero() { return {{T(0.0), T(0.0), T(0.0)}}; }
 };
 
 template <typename T>

@@ -42,7 +42,8 @@ template <typename M>
 bool admissible(const State<double, M>& s) {
   return std::isfinite(s.void_ratio) && s.void_ratio > 0.0 && std::isfinite(s.coordination) &&
          s.coordination > 0.0 && std::isfinite(s.lambda) && s.lambda > 0.0 &&
-         all_finite(s.fabric) && all_finite(s.normal) && all_finite(s.tangential);
+         all_finite(s.fabric) && all_finite(s.normal) && all_finite(s.tangential) &&
+         all_finite(s.inherent);
 }
 
 /// Lambda such that the SFF stress (network_model.h) of the network (e, Z, A, F) has the mean

@@ -33,6 +33,9 @@
  *   PROPS(46)      w_psi, the void ratio's weight in the anisotropies' targets, which follow
  *                  xi - w_psi (e - e_c) (docs/network-model.md Eq. N2c); 0 (xi alone) when
  *                  NPROPS < 46.
+ *   PROPS(47)      r_i, how fast the fabric's inherent part fades, as a share of k_a
+ *                  (docs/network-model.md Eq. N2d); 1 (with the rest of the fabric) when
+ *                  NPROPS < 47. The initial fabric A_0 is all inherent.
  * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
  * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
  * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
@@ -45,6 +48,7 @@
  *   STATEV(11..16) F
  *   STATEV(17..22) F^t
  *   STATEV(23)     RK4 substeps of the last update
+ *   STATEV(24..29) A_i, the fabric's inherent part (Eq. N2d)
  * DDSDDE: the exact consistent tangent (unsymmetric). A failed update (more than 10,000 substeps,
  * or a state that leaves the admissible range), a bad PROPS, NTENS or parameter file leave STRESS
  * and STATEV unchanged and set PNEWDT to at most 0.5, with a message on stderr and in
@@ -69,7 +73,8 @@ enum {
   SFFCAL_UMAT_NETWORK_STATE_NORMAL = 10,
   SFFCAL_UMAT_NETWORK_STATE_TANGENTIAL = 16,
   SFFCAL_UMAT_NETWORK_STATE_SUBSTEPS = 22,
-  SFFCAL_UMAT_NETWORK_NSTATV = 23,
+  SFFCAL_UMAT_NETWORK_STATE_INHERENT = 23,
+  SFFCAL_UMAT_NETWORK_NSTATV = 29,
   SFFCAL_UMAT_NETWORK_PROP_VOID_RATIO = 0,
   SFFCAL_UMAT_NETWORK_PROP_COORDINATION = 1,
   SFFCAL_UMAT_NETWORK_PROP_FABRIC = 2,
@@ -79,7 +84,8 @@ enum {
   SFFCAL_UMAT_NETWORK_PROP_PARAMETERS = 21,
   SFFCAL_UMAT_NETWORK_NPROPS_STATE = 20,
   SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39,  /* the first version's 18 parameters */
-  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 46   /* and c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e, w_psi */
+  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 47   /* and c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e, w_psi,
+                                           r_i */
 };
 
 void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double* sse,

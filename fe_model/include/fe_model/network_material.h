@@ -6,7 +6,8 @@
 // Signs: the model is compression positive, fe_model tension positive; the adapter flips the
 // strain increment and the stress (the tangent is the same in both conventions).
 // Internal variables (PointState::internal_variables, compression positive, row-major 3x3):
-//   [0] void ratio, [1] coordination Z, [2] Lambda, [3..11] A, [12..20] F, [21..29] F^t.
+//   [0] void ratio, [1] coordination Z, [2] Lambda, [3..11] A, [12..20] F, [21..29] F^t,
+//   [30..38] A_i, the fabric's inherent part (Eq. N2d; the initial fabric at the start).
 #ifndef FE_MODEL_NETWORK_MATERIAL_H_
 #define FE_MODEL_NETWORK_MATERIAL_H_
 
@@ -31,7 +32,7 @@ struct NetworkInitialState {
 
 class NetworkMaterial final : public Material {
  public:
-  static constexpr std::size_t kNumInternalVariables = 30;
+  static constexpr std::size_t kNumInternalVariables = 39;
 
   /// Throws std::invalid_argument naming a parameter outside its range or a non-physical initial
   /// state (void ratio or coordination not positive, a tensor not finite). youngs_modulus: the
