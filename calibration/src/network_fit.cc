@@ -518,9 +518,10 @@ namespace {
 constexpr double kPressureSpanForSlope = 1.5;
 
 // The initial |a_c| from which the inherent fabric's fading rate r_i is fitted (held_parameters):
-// above the 500-clump specimens' noise in a_c (0.025-0.08 for the mean of three seeds) and the
-// isotropic specimens' own a_c0 (up to 0.09); a deposited specimen's is 0.2.
-constexpr double kInherentFabricToFit = 0.1;
+// a deposited specimen's (0.15-0.33 at 500 clumps), above what an isotropic specimen starts with
+// by chance (up to 0.112 for one seed of 500 clumps; freed by that, the matrix fit of six such
+// runs put r_i at its bound 1 and ended in another minimum of its flat cost).
+constexpr double kInherentFabricToFit = 0.15;
 
 // The parameters held at their start: those the options name, and those the tests cannot
 // determine: c_t (the Lode factor of Eq. N2b) without an extension test, c_l (Eq. N5b) and n_kappa
