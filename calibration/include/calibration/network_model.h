@@ -245,7 +245,7 @@ T lode_factor(const T& c, const M& deviator, const T& shear_squared) {
   using std::sqrt;
   if (!(shear_squared > T(0.0))) return T(1.0);
   const T norm = sqrt(shear_squared);
-  T cos3 = T(std::sqrt(6.0)) * trace_of_cube(deviator) / (norm * norm * norm);
+  T cos3 = T(std::sqrt(6.0)) * deviator_cube_trace(deviator) / (norm * norm * norm);
   if (cos3 > T(1.0)) cos3 = T(1.0);
   if (cos3 < T(-1.0)) cos3 = T(-1.0);
   return T(2.0) * c / ((T(1.0) + c) - (T(1.0) - c) * cos3);
@@ -287,8 +287,7 @@ State<T, M> rate(const Parameters<T>& par, const State<T, M>& s, const M& d) {
   // exp(n_r xi) eps_q-rate A_i, and A relaxes towards its target plus what is left of it: under
   // a fixed target A = target (1 - exp(-k eps_q)) + A_i0 exp(-r_i k eps_q). r_i = 1 or A_i = 0:
   // the law before it, bit for bit.
-  r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric) +
-             (par.k_a * speed * shear * (T(1.0) - par.r_i)) * s.inherent;
+  r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric - (T(1.0) - par.r_i) * s.inherent);
   r.inherent = (-(par.r_i * par.k_a * speed * shear)) * s.inherent;
   r.normal = towards(par.f_cs, par.f_z, par.k_f, s.normal);
   // Eq. N2b: the tangential anisotropy's target depends on the Lode angle of shearing (in the

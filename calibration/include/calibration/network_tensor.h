@@ -62,14 +62,17 @@ T contract(const DiagonalTensor<T>& x, const DiagonalTensor<T>& y) {
   return x.d[0] * y.d[0] + (x.d[1] * y.d[1] + x.d[2] * y.d[2]);
 }
 
-/// tr(x^3).
+/// tr(x^3) of a deviator x, as 3 det x (Cayley-Hamilton with tr x = 0: x^3 = I2 x + I3 I): a
+/// sixth of the products of x x x.
 template <typename T>
-T trace_of_cube(const Tensor<T>& x) {
-  return (x * x * x).trace();
+T deviator_cube_trace(const Tensor<T>& x) {
+  return T(3.0) * (x(0, 0) * (x(1, 1) * x(2, 2) - x(1, 2) * x(2, 1)) -
+                   x(0, 1) * (x(1, 0) * x(2, 2) - x(1, 2) * x(2, 0)) +
+                   x(0, 2) * (x(1, 0) * x(2, 1) - x(1, 1) * x(2, 0)));
 }
 template <typename T>
-T trace_of_cube(const DiagonalTensor<T>& x) {
-  return x.d[0] * x.d[0] * x.d[0] + (x.d[1] * x.d[1] * x.d[1] + x.d[2] * x.d[2] * x.d[2]);
+T deviator_cube_trace(const DiagonalTensor<T>& x) {
+  return T(3.0) * (x.d[0] * (x.d[1] * x.d[2]));
 }
 
 /// sym(x y) = (x y + (x y)^T) / 2.
