@@ -45,7 +45,7 @@ Parameters<double> values(const Parameters<T>& par) {
 
 // The state along a test's path: the tests are triaxial about z from an axisymmetric start, so
 // every tensor of the state stays diagonal (network_tensor.h), and the fit integrates the laws on
-// the diagonals alone: a third of the work of the full tensors, the same numbers.
+// the diagonals alone: a third of the work of the full tensors, the same numbers to rounding.
 template <typename T>
 using PathState = State<T, DiagonalTensor<T>>;
 

@@ -74,7 +74,8 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
       s << "\n" << o.test->name << ": the prediction stopped: " << o.predicted.message << "\n";
   s << "\nParameters (standard errors: robust to residuals correlated along each curve, and as if "
        "independent; - where the parameter was held: at a bound, c_t without an extension test, "
-       "c_l and n_kappa without an undrained test, lambda_e at one pressure):\n\n"
+       "c_l and n_kappa without an undrained test, lambda_e at one pressure, r_i without a "
+       "deposit's initial fabric):\n\n"
        "| parameter | value | standard error | SE if independent | lower | upper |\n"
        "|---|---|---|---|---|---|\n";
   const auto x = to_array(result.parameters), lo = to_array(lower_bounds()),

@@ -169,8 +169,8 @@ ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>
                                   bool predicted, const FitOptions& options = {});
 
 /// The start itself, then starts - 1 points drawn about it from std::mt19937_64(seed) (c_t, c_l,
-/// n_kappa, d_psi, e_gamma, lambda_e and w_psi, added after the first version, from
-/// std::mt19937_64(seed + 1) to (seed + 7)): each parameter with a positive range multiplied by a
+/// n_kappa, d_psi, e_gamma, lambda_e, w_psi and r_i, added after the first version, from
+/// std::mt19937_64(seed + 1) to (seed + 8)): each parameter with a positive range multiplied by a
 /// log-uniform factor within 3, each signed one moved uniformly by up to max(|x|, 1), e_gamma (a
 /// void ratio placed by the data) by up to 0.1; clipped to the bounds.
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
@@ -183,7 +183,8 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// predicted path leaves the admissible states) it starts from the start's own point. Residuals
 /// and their scales: FitOptions. Without an extension test c_t (the Lode factor) is held at its
 /// start value, without an undrained test c_l (N5b) and n_kappa (N6), at one pressure lambda_e
-/// (N7b). Fills the standard errors at the solution.
+/// (N7b), without a test starting from a deposit's fabric (|a_c| >= 0.15) r_i (N2d). Fills the
+/// standard errors at the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 

@@ -285,8 +285,8 @@ State<T, M> rate(const Parameters<T>& par, const State<T, M>& s, const M& d) {
   r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
   // Eq. N2d: the fabric's inherent part A_i fades r_i times as fast as the rest, dA_i = -r_i k_a
   // exp(n_r xi) eps_q-rate A_i, and A relaxes towards its target plus what is left of it: under
-  // a fixed target A = target (1 - exp(-k eps_q)) + A_i0 exp(-r_i k eps_q). r_i = 1 or A_i = 0:
-  // the law before it, bit for bit.
+  // a fixed target A = target (1 - exp(-k eps_q)) + (A_0 - A_i0) exp(-k eps_q) + A_i0 exp(-r_i k
+  // eps_q). With r_i = 1 or A_i = 0, A follows N2 alone, bit for bit.
   r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric - (T(1.0) - par.r_i) * s.inherent);
   r.inherent = (-(par.r_i * par.k_a * speed * shear)) * s.inherent;
   r.normal = towards(par.f_cs, par.f_z, par.k_f, s.normal);

@@ -62,8 +62,8 @@ T contract(const DiagonalTensor<T>& x, const DiagonalTensor<T>& y) {
   return x.d[0] * y.d[0] + (x.d[1] * y.d[1] + x.d[2] * y.d[2]);
 }
 
-/// tr(x^3) of a deviator x, as 3 det x (Cayley-Hamilton with tr x = 0: x^3 = I2 x + I3 I): a
-/// sixth of the products of x x x.
+/// tr(x^3) of a deviator x, as 3 det x (Cayley-Hamilton: tr x^3 = 3 det x where tr x = 0): 12
+/// products where x x x takes 54.
 template <typename T>
 T deviator_cube_trace(const Tensor<T>& x) {
   return T(3.0) * (x(0, 0) * (x(1, 1) * x(2, 2) - x(1, 2) * x(2, 1)) -
