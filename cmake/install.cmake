@@ -12,6 +12,7 @@ install(FILES
   calibration/include/calibration/acst_implicit.h
   calibration/include/calibration/umat.h
   calibration/include/calibration/network_model.h
+  calibration/include/calibration/network_tensor.h
   calibration/include/calibration/network_update.h
   calibration/include/calibration/umat_network.h
   DESTINATION include/calibration)
