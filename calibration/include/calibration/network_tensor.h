@@ -2,7 +2,8 @@
 // FE update, any strain path) and a diagonal alone (the fit's triaxial paths: from an axisymmetric
 // start under diagonal strain increments every tensor of the state stays diagonal, exactly). The
 // model's laws are written once, in the operations below, for both; on the diagonal form the fit
-// carries a Jet of 25 derivatives through 3 components instead of 9 (issue 19: the fit's time).
+// carries a Jet of one derivative per parameter through 3 components instead of 9 (issue 19: the
+// fit's time).
 //
 // Needs only Eigen; templated on the scalar type (double or a ceres::Jet).
 #pragma once
@@ -62,7 +63,7 @@ T contract(const DiagonalTensor<T>& x, const DiagonalTensor<T>& y) {
   return x.d[0] * y.d[0] + (x.d[1] * y.d[1] + x.d[2] * y.d[2]);
 }
 
-/// tr(x^3) of a deviator x, as 3 det x (Cayley-Hamilton: tr x^3 = 3 det x where tr x = 0): 12
+/// tr(x^3) of a deviator x, as 3 det x (Cayley-Hamilton: tr x^3 = 3 det x where tr x = 0): 10
 /// products where x x x takes 54.
 template <typename T>
 T deviator_cube_trace(const Tensor<T>& x) {
