@@ -166,7 +166,8 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options
       ->check(CLI::ExistingFile);
   calibrate.add_option("--hold", options.held_parameters,
                        "--model network: a parameter held at its starting value, e.g. c_t (at 1: "
-                       "no Lode dependence), c_l (at 0) or n_kappa (at 1); repeatable");
+                       "no Lode dependence), c_l (at 0), n_kappa (at 1) or n_ra (at 0: the fit's "
+                       "last stage, which frees it, skipped); repeatable");
   calibrate.add_flag("--predicted-only", options.predicted_only,
                      "--model network: fit on the predicted paths from each start directly, "
                      "without the first stage along the DEM's strain paths (faster where an "

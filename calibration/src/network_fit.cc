@@ -493,7 +493,7 @@ Parameters<double> default_start() {
   p.t_cs = 0.085, p.t_z = 0.1, p.k_t = 200.0;
   p.d_z = 3.0, p.d_a = 2.0, p.n_r = 0.0, p.n_z = 0.0;
   p.c_t = 1.0, p.c_l = 0.0, p.n_kappa = 1.0;
-  p.d_psi = 0.0, p.e_gamma = 0.8, p.lambda_e = 0.01, p.w_psi = 0.0, p.r_i = 1.0;
+  p.d_psi = 0.0, p.e_gamma = 0.8, p.lambda_e = 0.01, p.w_psi = 0.0, p.r_i = 1.0, p.n_ra = 0.0;
   return p;
 }
 
@@ -563,10 +563,14 @@ std::vector<int> held_parameters(const std::vector<TestData>& tests, const FitOp
 }
 
 // One Levenberg-Marquardt solve of the objective (along the DEM's strain paths or on the
-// predicted ones) from x, within the bounds; x holds the result.
+// predicted ones) from x, within the bounds; x holds the result. hold_fabric_rate: n_ra held too,
+// as in every start's stages (fit).
 ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
-                             const FitOptions& options, std::array<double, kNumParameters>& x) {
-  const std::vector<int> held = held_parameters(tests, options);
+                             const FitOptions& options, std::array<double, kNumParameters>& x,
+                             bool hold_fabric_rate) {
+  std::vector<int> held = held_parameters(tests, options);
+  if (hold_fabric_rate && std::find(held.begin(), held.end(), kFabricRateExponentIndex) == held.end())
+    held.push_back(kFabricRateExponentIndex);
   ceres::Problem problem;
   for (const TestData& t : tests) {
     PathObjective objective{&t, path_nodes(t), path_start(t), options, predicted};
@@ -619,14 +623,19 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
   // Each parameter added after the first version draws from its own generator (seed + 1 for c_t,
   // seed + 2 for c_l, seed + 3 for n_kappa, seed + 4 to 6 for d_psi, e_gamma and lambda_e, seed + 7
   // for w_psi, seed + 8 for r_i), so that the parameters before it get the draws they always had.
+  // n_ra keeps the start's value: the fit frees it only in its last stage (fit).
   std::vector<std::mt19937_64> generators;
-  for (int g = 0; g <= kNumParameters - kNumFirstVersionParameters; ++g)
+  for (int g = 0; g < kFabricRateExponentIndex - kNumFirstVersionParameters + 1; ++g)
     generators.emplace_back(seed + static_cast<std::uint64_t>(g));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const auto x = to_array(start), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
   for (int k = 1; k < starts; ++k) {
     std::array<double, kNumParameters> y;
     for (int i = 0; i < kNumParameters; ++i) {
+      if (i == kFabricRateExponentIndex) {
+        y[i] = x[i];
+        continue;
+      }
       std::mt19937_64& random =
           generators[static_cast<std::size_t>(std::max(0, i - kNumFirstVersionParameters + 1))];
       // Positive ranges: a factor of up to 3 either way; signed ones and a positive one at 0 (d_psi
@@ -663,6 +672,36 @@ ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>
   return value;
 }
 
+namespace {
+// The fit's last stage (Eq. N3b): n_ra freed on the predicted paths from the best start's
+// solution, unless the options hold it. Each start holds it at its start value: freed in every
+// start, the first stage (along the DEM's strain paths) took the starts into other minima of
+// higher cost (docs/calibration.md, "The fabric's own rate exponent n_ra").
+void free_fabric_rate(const std::vector<TestData>& tests, const FitOptions& options,
+                      FitResult& best) {
+  const std::vector<int> held = held_parameters(tests, options);
+  if (std::find(held.begin(), held.end(), kFabricRateExponentIndex) != held.end()) return;
+  std::array<double, kNumParameters> x = to_array(best.parameters);
+  const ceres::Solver::Summary freed = solve(tests, true, options, x, false);
+  if (options.progress) {
+    char line[256];
+    std::snprintf(line, sizeof line, "n_ra freed, on the predicted paths: cost %.6g -> %.6g, %zu "
+                  "iterations", freed.initial_cost, freed.final_cost,
+                  freed.iterations.empty() ? 0 : freed.iterations.size() - 1);
+    options.progress(line);
+  }
+  if (!freed.IsSolutionUsable() || !std::isfinite(freed.final_cost) ||
+      !(freed.final_cost <= best.final_cost))
+    return;
+  best.parameters = from_array(x.data());
+  best.final_cost = freed.final_cost;
+  best.iterations += freed.iterations.empty() ? 0 : static_cast<int>(freed.iterations.size()) - 1;
+  best.converged = freed.termination_type == ceres::CONVERGENCE;
+  best.fabric_rate_freed = true;
+  best.report += "\nwith n_ra freed: " + freed.BriefReport();
+}
+}  // namespace
+
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options) {
   validate(start);
@@ -692,7 +731,7 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
     const std::array<double, kNumParameters> own_point = x;
     ceres::Solver::Summary along;  // no iterations without the first stage
     if (options.first_stage) {
-      along = solve(tests, false, options, x);
+      along = solve(tests, false, options, x, true);
       report("along the DEM strain paths", along);
       if (along.termination_type == ceres::FAILURE) {
         best.start_costs.push_back(std::numeric_limits<double>::quiet_NaN());
@@ -700,14 +739,14 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
         continue;
       }
     }
-    ceres::Solver::Summary predicted = solve(tests, true, options, x);
+    ceres::Solver::Summary predicted = solve(tests, true, options, x, true);
     report("on the predicted paths", predicted);
     if (predicted.termination_type == ceres::FAILURE && predicted.iterations.empty() &&
         !along.iterations.empty()) {
       // The first stage's fit to the DEM's strain paths can end where a predicted path (its
       // own lateral stress or volume) leaves the admissible states; the start's own point may not.
       x = own_point;
-      predicted = solve(tests, true, options, x);
+      predicted = solve(tests, true, options, x, true);
       report("on the predicted paths from the start's own point", predicted);
     }
     const bool usable = predicted.IsSolutionUsable() && std::isfinite(predicted.final_cost);
@@ -731,6 +770,7 @@ FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& star
     ++k;
   }
   if (!found) throw std::runtime_error("contact-network fit: no start gave a usable solution");
+  free_fabric_rate(tests, options, best);
   best.errors = standard_errors(tests, best.parameters, options);
   return best;
 }

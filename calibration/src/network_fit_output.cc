@@ -75,7 +75,7 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
   s << "\nParameters (standard errors: robust to residuals correlated along each curve, and as if "
        "independent; - where the parameter was held: at a bound, c_t without an extension test, "
        "c_l and n_kappa without an undrained test, lambda_e at one pressure, r_i without a "
-       "deposit's initial fabric):\n\n"
+       "deposit's initial fabric, n_ra where the options hold it):\n\n"
        "| parameter | value | standard error | SE if independent | lower | upper |\n"
        "|---|---|---|---|---|---|\n";
   const auto x = to_array(result.parameters), lo = to_array(lower_bounds()),
@@ -88,10 +88,15 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
   }
   if (!result.errors.estimated)
     s << "\nNo standard errors: " << result.errors.missing << ".\n";
-  s << "\nStarts: " << result.start_costs.size() << "; start " << result.start + 1
-    << " won with the final cost " << number(result.final_cost, 6) << " (each start's:";
+  s << "\nStarts (n_ra held at its start value): " << result.start_costs.size() << "; start "
+    << result.start + 1 << " won with the cost "
+    << number(result.start_costs[static_cast<std::size_t>(result.start)], 6) << " (each start's:";
   for (double c : result.start_costs) s << " " << (std::isfinite(c) ? number(c, 6) : "unusable");
-  s << ").\n";
+  s << ").";
+  if (result.fabric_rate_freed)
+    s << " Then n_ra freed on the predicted paths (Eq. N3b): the final cost "
+      << number(result.final_cost, 6) << ".";
+  s << "\n";
   return s.str();
 }
 
@@ -161,6 +166,7 @@ std::string write_fit_outputs(const std::string& folder, const std::vector<TestD
       {"winning_start", result.start + 1},  // 1-based, as the progress lines count
       {"start_final_costs", costs},
       {"final_cost", result.final_cost},
+      {"n_ra_freed_last", result.fabric_rate_freed},
       {"converged", result.converged},
       {"max_iterations", options.max_iterations},
       {"substep_size", options.substep_size},

@@ -40,7 +40,8 @@ Material material_from_props(const double* props, int nprops) {
                              ": give 20 (the initial network; E and the parameters from "
                              "SFFCAL_NETWORK_PARAMETERS), 39 (with E and the first 18 parameters), "
                              "40 (and c_t), 41 (and c_l), 42 (and n_kappa), 43 to 45 (and "
-                             "d_psi, e_gamma, lambda_e), 46 (and w_psi) or 47 (and r_i)");
+                             "d_psi, e_gamma, lambda_e), 46 (and w_psi), 47 (and r_i) or 48 "
+                             "(and n_ra)");
   Material m;
   m.youngs_modulus = props[SFFCAL_UMAT_NETWORK_PROP_YOUNGS_MODULUS];
   if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus))
@@ -48,7 +49,7 @@ Material material_from_props(const double* props, int nprops) {
                              std::to_string(m.youngs_modulus) + " Pa, must be > 0");
   // PROPS(22..39), the first version's 18 parameters, then c_t (PROPS(40)), c_l (PROPS(41)),
   // n_kappa (PROPS(42)), d_psi, e_gamma and lambda_e (PROPS(43..45)), w_psi (PROPS(46)), r_i
-  // (PROPS(47)) where given.
+  // (PROPS(47)), n_ra (PROPS(48)) where given.
   double values[net::kNumParameters];
   for (int i = 0; i < net::kNumParameters; ++i)
     values[i] = SFFCAL_UMAT_NETWORK_PROP_PARAMETERS + i < nprops

@@ -306,6 +306,49 @@ TEST(NetworkModel, TheInherentFabricFadesAtItsOwnRate) {
   EXPECT_EQ(fading.lambda, without.lambda);
 }
 
+TEST(NetworkModel, TheFabricRelaxesAtItsOwnRateFactor) {
+  // Eq. N3b: with Z and Lambda held (k_z = c_v = 0, no dilatancy) the over-coordination xi stays
+  // put under isochoric shear, and N2 integrates to a(eps_q) = a_t + (a_0 - a_t) exp(-k eps_q),
+  // a_t = a_cs + a_z xi: for the fabric k = k_a exp((n_r + n_ra) xi), for the normal force k_f
+  // exp(n_r xi).
+  Parameters<double> p = plausible();
+  p.d_z = p.d_a = p.d_psi = 0.0;
+  p.k_z = p.c_v = 0.0;
+  p.n_ra = 2.0;
+  State<double> s = critical_state(p, 1e-3);
+  const double xi = 0.15;
+  s.coordination *= 1.0 + xi;
+  s.fabric = axisymmetric(-0.2);
+  s.inherent = Tensor<double>::Zero();
+  s.normal = axisymmetric(0.3);
+  const double eps_q = 0.05;
+  const Tensor<double> d = isochoric_compression(eps_q);
+  const int substeps = substeps_for(p, s, d.norm());
+  const State<double> end = integrate(p, s, d, substeps);
+  ASSERT_EQ(end.coordination, s.coordination);
+  const double k_fabric = p.k_a * std::exp((p.n_r + p.n_ra) * xi);
+  const double k_normal = p.k_f * std::exp(p.n_r * xi);
+  const double a_target = p.a_cs + p.a_z * xi, f_target = p.f_cs + p.f_z * xi;
+  EXPECT_NEAR(triaxial_part(end.fabric),
+              a_target + (-0.2 - a_target) * std::exp(-k_fabric * eps_q), 1e-9);
+  EXPECT_NEAR(triaxial_part(end.normal), f_target + (0.3 - f_target) * std::exp(-k_normal * eps_q),
+              1e-9);
+  // The fabric's factor sets the substeps where its rate is the fastest (slow forces and Lambda).
+  Parameters<double> slow_forces = p;
+  slow_forces.k_f = slow_forces.k_t = 1.0;
+  slow_forces.kappa = 10.0;
+  const int fabric_substeps = substeps_for(slow_forces, s, d.norm());
+  EXPECT_EQ(fabric_substeps, static_cast<int>(std::ceil(k_fabric * d.norm() / kUpdateSubstepSize)));
+  slow_forces.n_ra = 0.0;
+  EXPECT_LT(substeps_for(slow_forces, s, d.norm()), fabric_substeps);
+  p.n_ra = 0.0;
+  // n_ra = 0: the fabric at the forces' factor exp(n_r xi).
+  const State<double> shared = integrate(p, s, d, substeps);
+  EXPECT_NEAR(triaxial_part(shared.fabric),
+              a_target + (-0.2 - a_target) * std::exp(-p.k_a * std::exp(p.n_r * xi) * eps_q),
+              1e-9);
+}
+
 TEST(NetworkModel, RatesAreFrameIndifferent) {
   const Parameters<double> p = plausible();
   std::mt19937_64 random(11);
@@ -542,6 +585,7 @@ TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
   p.n_kappa = 0.4;  // n_kappa's column away from 1, where its factor is exp(0)
   p.w_psi = 0.8;    // w_psi's column inside its range
   p.r_i = 0.3;      // r_i's column inside its range, seen through the dense test's initial fabric
+  p.n_ra = 0.8;     // n_ra's column away from 0, where its factor is exp(0)
   const TestData dense = synthetic_test(p, "dense", 0.58, 6.7, 4.5e-4,
                                         TestPath::kDrainedCompression, 25, 0.12, 0.2);
   const TestData undrained = synthetic_test(p, "loose_undrained", 0.73, 4.4, 7e-4, false, 25, 0.08);
@@ -579,7 +623,9 @@ TEST(NetworkModel, FitJacobiansMatchCentredDifferencesOnBothObjectives) {
 }
 
 TEST(NetworkModel, TheFitRecoversSyntheticTests) {
-  const Parameters<double> truth = plausible();
+  // n_ra (N3b) away from its start 0: the fit's starts hold it there, its last stage frees it.
+  Parameters<double> truth = plausible();
+  truth.n_ra = 1.5;
   const std::vector<TestData> tests = {
       synthetic_test(truth, "dense", 0.58, 6.7, 4.5e-4, true, 31, 0.2),
       synthetic_test(truth, "loose", 0.73, 4.3, 7e-4, true, 31, 0.2)};
@@ -589,7 +635,8 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
   // At one pressure lambda_e is held too.
   const double factors[kNumParameters] = {1.2, 0.95, 1.2, 0.8, 1.1, 0.95, 1.2, 1.15,
                                           1.05, 0.9, 1.1, 1.05, 0.9, 1.2, 1.1, 1.2,
-                                          0.9, 1.1, 1.0, 1.0, 1.0, 1.2, 0.97, 1.0, 1.0};
+                                          0.9, 1.1, 1.0, 1.0, 1.0, 1.2, 0.97, 1.0, 1.0,
+                                          1.0, 0.0};
   for (int i = 0; i < kNumParameters; ++i) start[i] *= factors[i];
   FitOptions options;
   options.max_iterations = 300;
@@ -599,6 +646,9 @@ TEST(NetworkModel, TheFitRecoversSyntheticTests) {
   ASSERT_GT(start_cost, 100.0);
   const FitResult result = fit(tests, from_array(start.data()), options);
   EXPECT_LT(result.final_cost, 1e-8 * start_cost) << result.report;
+  EXPECT_TRUE(result.fabric_rate_freed);
+  EXPECT_GT(result.start_costs[0], 1e3 * result.final_cost);  // n_ra = 0 could not fit them
+  EXPECT_NEAR(result.parameters.n_ra, truth.n_ra, 1e-3);
   for (const TestData& t : tests) {
     const Errors e = compare(predict(result.parameters, t), t);
     EXPECT_LT(e.eta, 1e-3) << t.name;
@@ -878,8 +928,12 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
   EXPECT_EQ(read_parameters_json(path).d_psi, 0.0);
   EXPECT_EQ(read_parameters_json(path).e_gamma, 0.8);
   EXPECT_EQ(read_parameters_json(path).lambda_e, 0.0);
-  // ... and w_psi = 0, targets in xi alone.
+  // ... and w_psi = 0, targets in xi alone; r_i = 1, no inherent fabric of its own; n_ra = 0,
+  // the fabric at the forces' rate factor.
   EXPECT_EQ(read_parameters_json(path).w_psi, 0.0);
+  EXPECT_EQ(read_parameters_json(path).r_i, 1.0);
+  EXPECT_EQ(read_parameters_json(path).n_ra, 0.0);
+  expect_error(first_version + R"(, "n_ra": {"value": 11, "unit": "1"}}})", "n_ra");
   expect_error(first_version + R"(, "d_psi": {"value": -1, "unit": "1"}}})", "d_psi");
   expect_error(first_version + R"(, "e_gamma": {"value": 0.1, "unit": "1"}}})", "e_gamma");
   expect_error(first_version + R"(, "w_psi": {"value": -1, "unit": "1"}}})", "w_psi");

@@ -39,7 +39,7 @@ check "parameters.json: the contact-network model, standard errors, inputs and e
 import json, math, sys
 d = json.load(open(sys.argv[1]))
 assert d["model"] == "contact_network"
-assert len(d["parameters"]) == 26
+assert len(d["parameters"]) == 27
 errors = d["fit"]["standard_errors"]
 assert sum(1 for v in errors.values() if v is not None and math.isfinite(v) and v > 0) >= 12
 assert [i["fitted"] for i in d["provenance"]["inputs"]] == [True, True, False]

@@ -33,7 +33,7 @@ static int message_has(const char* text) {
   return strstr(sffcal_umat_last_message(), text) != NULL;
 }
 
-/* At least the largest NSTATV and NPROPS of either entry (the network one: 29 and 47). */
+/* At least the largest NSTATV and NPROPS of either entry (the network one: 29 and 48). */
 enum { kMaxStatev = 32, kMaxProps = 48 };
 
 /* One integration point: what Abaqus keeps between increments, and the material's name. */

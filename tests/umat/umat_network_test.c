@@ -21,7 +21,7 @@
 static const double kP0 = 100e3; /* initial isotropic stress [Pa] */
 static const double kE0 = 0.574, kZ0 = 6.69;
 static const double kAc = -0.022, kAn = 0.040, kAt = -0.0015; /* triaxial parts t(.) */
-/* PROPS(22..45) */
+/* PROPS(22..48) */
 enum { kNumParameters = SFFCAL_UMAT_NETWORK_NPROPS_MAX - SFFCAL_UMAT_NETWORK_PROP_PARAMETERS };
 
 /* x diag(-1, -1, 2) / 3 in the order 11, 22, 33, 12, 13, 23. */
@@ -31,7 +31,7 @@ static void axisymmetric(double x, double* props) {
   props[3] = props[4] = props[5] = 0.0;
 }
 
-/* youngs_and_parameters: E then the 26 parameters (PROPS 21..47). */
+/* youngs_and_parameters: E then the 27 parameters (PROPS 21..48). */
 static Point make_point(const double* youngs_and_parameters, int ntens, int nprops) {
   Point pt;
   memset(&pt, 0, sizeof pt);
@@ -184,6 +184,10 @@ static void drained_path_matches_driver(const double* youngs_and_parameters) {
   added_parameter_acts(youngs_and_parameters, ct + 7, 1.0, 0.0, compression,
                        "NPROPS = 46 is r_i = 1; r_i = 0 in PROPS(47) changes a compression step, "
                        "|dS33| [Pa]");
+  /* PROPS(48), n_ra (Eq. N3b): the dense network's fabric (xi > 0) at another rate. */
+  added_parameter_acts(youngs_and_parameters, ct + 8, 0.0, 3.0, compression,
+                       "NPROPS = 47 is n_ra = 0; n_ra = 3 in PROPS(48) changes a compression "
+                       "step, |dS33| [Pa]");
 
   /* The name chooses the entry in any case; another name goes to ACST, which refuses these
    * PROPS (its parameters, PROPS(8..22), would be the anisotropies and E here). */

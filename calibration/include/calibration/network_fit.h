@@ -81,9 +81,10 @@ struct FitOptions {
   /// the lowest cost of the second stage wins.
   int starts = 1;
   std::uint64_t seed = 1;
-  /// Parameters held at their start values (parameter_names()), besides c_t without an extension
-  /// test, c_l and n_kappa without an undrained test, and lambda_e when the tests' initial mean
-  /// stresses span less than a factor 1.5, which are always held.
+  /// Parameters held at their start values (parameter_names(); "n_ra" skips the fit's last stage),
+  /// besides c_t without an extension test, c_l and n_kappa without an undrained test, lambda_e
+  /// when the tests' initial mean stresses span less than a factor 1.5 and r_i without a deposit's
+  /// initial fabric, which are always held.
   std::vector<std::string> held;
   /// Fit along the DEM's strain paths first (the first stage), then on the predicted paths from its
   /// result; false: on the predicted paths from each start directly (docs/network-model.md,
@@ -137,11 +138,13 @@ StandardErrors standard_errors(const std::vector<TestData>& tests, const Paramet
 struct FitResult {
   Parameters<double> parameters;
   StandardErrors errors;            ///< at the solution
-  double initial_cost = 0.0, final_cost = 0.0;  ///< of the second stage
+  double initial_cost = 0.0, final_cost = 0.0;  ///< of the second stage, or of the last
   int iterations = 0;
   bool converged = false;
   int start = 0;                    ///< the winning start
   std::vector<double> start_costs;  ///< each start's final cost (NaN: no usable solution)
+  /// Whether the last stage (n_ra freed from the winning start's solution) ran and was kept.
+  bool fabric_rate_freed = false;
   std::string report;               ///< Ceres' brief reports of the winning start
 };
 
@@ -172,7 +175,8 @@ ObjectiveValue evaluate_objective(const TestData& test, const Parameters<double>
 /// n_kappa, d_psi, e_gamma, lambda_e, w_psi and r_i, added after the first version, from
 /// std::mt19937_64(seed + 1) to (seed + 8)): each parameter with a positive range multiplied by a
 /// log-uniform factor within 3, each signed one moved uniformly by up to max(|x|, 1), e_gamma (a
-/// void ratio placed by the data) by up to 0.1; clipped to the bounds.
+/// void ratio placed by the data) by up to 0.1; clipped to the bounds. n_ra keeps the start's
+/// value (fit frees it only in its last stage).
 std::vector<Parameters<double>> starting_points(const Parameters<double>& start, int starts,
                                                 std::uint64_t seed);
 
@@ -183,8 +187,11 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// predicted path leaves the admissible states) it starts from the start's own point. Residuals
 /// and their scales: FitOptions. Without an extension test c_t (the Lode factor) is held at its
 /// start value, without an undrained test c_l (N5b) and n_kappa (N6), at one pressure lambda_e
-/// (N7b), without a test starting from a deposit's fabric (|a_c| >= 0.15) r_i (N2d). Fills the
-/// standard errors at the solution.
+/// (N7b), without a test starting from a deposit's fabric (|a_c| >= 0.15) r_i (N2d). Every start
+/// holds n_ra (N3b) at its start value; a last stage then frees it on the predicted paths from the
+/// winning start's solution (unless FitOptions::held names it), kept where it lowers the cost:
+/// freed in every start, the first stage took the starts into other minima of higher cost. Fills
+/// the standard errors at the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
 

@@ -77,11 +77,15 @@ struct Parameters {
   /// The rate at which the fabric's inherent part fades, as a share of k_a (N2d), r_i in [0, 1];
   /// 1 (the inherent part fades with the rest of A: the law before it) in files written before it.
   T r_i = unset();
+  /// The fabric's own rate exponent in the over-coordination, over the force anisotropies' n_r
+  /// (N3b): A and its inherent part relax at k_a exp((n_r + n_ra) xi); 0 (the fabric at the
+  /// forces' exp(n_r xi): the law before it) in files written before it.
+  T n_ra = unset();
 };
 
-inline constexpr int kNumParameters = 26;
+inline constexpr int kNumParameters = 27;
 /// The parameters added after the first version come at the end of the order (c_t, c_l, n_kappa,
-/// d_psi, e_gamma, lambda_e, w_psi, r_i).
+/// d_psi, e_gamma, lambda_e, w_psi, r_i, n_ra).
 inline constexpr int kNumFirstVersionParameters = 18;
 inline constexpr int kLodeFactorIndex = 18;
 inline constexpr int kLambdaGainIndex = 19;
@@ -91,18 +95,20 @@ inline constexpr int kCriticalVoidRatioIndex = 22;
 inline constexpr int kCriticalSlopeIndex = 23;
 inline constexpr int kTargetVoidRatioWeightIndex = 24;
 inline constexpr int kInherentFadeIndex = 25;
+inline constexpr int kFabricRateExponentIndex = 26;
 /// The value of an added parameter (index >= kNumFirstVersionParameters) in a parameter file or
 /// UMAT PROPS that does not give it: the model as it was before the parameter was added (c_t = 1,
 /// no Lode dependence; c_l = 0, no gain of contacts with the normal force; n_kappa = 1, ln Lambda
 /// linear in the strain; d_psi = 0, no critical void ratio line, whose e_gamma and lambda_e then
 /// do nothing: 0.8 and 0, values within their bounds; w_psi = 0, targets in xi alone; r_i = 1,
-/// the inherent fabric fading with the rest).
+/// the inherent fabric fading with the rest; n_ra = 0, the fabric at the forces' rate factor).
 inline double value_if_absent(int index) {
   switch (index) {
     case kLambdaGainIndex:
     case kStateDilatancyIndex:
     case kCriticalSlopeIndex:
     case kTargetVoidRatioWeightIndex:
+    case kFabricRateExponentIndex:
       return 0.0;
     case kCriticalVoidRatioIndex:
       return 0.8;
@@ -115,7 +121,8 @@ inline const std::array<const char*, kNumParameters>& parameter_names() {
   static const std::array<const char*, kNumParameters> names = {{
       "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
       "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z", "c_t",
-      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e", "w_psi", "r_i"}};
+      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e", "w_psi", "r_i",
+      "n_ra"}};
   return names;
 }
 
@@ -123,7 +130,8 @@ template <typename T>
 std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
   return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
           p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z, p.c_t,
-          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e, p.w_psi, p.r_i}};
+          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e, p.w_psi, p.r_i,
+          p.n_ra}};
 }
 
 template <typename T>
@@ -134,7 +142,7 @@ Parameters<T> from_array(const T* x) {
   p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
   p.n_z = x[17], p.c_t = x[18], p.c_l = x[19], p.n_kappa = x[20];
   p.d_psi = x[21], p.e_gamma = x[22], p.lambda_e = x[23], p.w_psi = x[24];
-  p.r_i = x[25];
+  p.r_i = x[25], p.n_ra = x[26];
   return p;
 }
 
@@ -149,6 +157,7 @@ inline Parameters<double> lower_bounds() {
   p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
   p.c_t = 0.2, p.c_l = 0.0, p.n_kappa = 0.0;
   p.d_psi = 0.0, p.e_gamma = 0.3, p.lambda_e = 0.0, p.w_psi = 0.0, p.r_i = 0.0;
+  p.n_ra = -10.0;
   return p;
 }
 
@@ -161,6 +170,7 @@ inline Parameters<double> upper_bounds() {
   p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
   p.c_t = 2.0, p.c_l = 1.0, p.n_kappa = 1.0;
   p.d_psi = 30.0, p.e_gamma = 1.5, p.lambda_e = 0.3, p.w_psi = 10.0, p.r_i = 1.0;
+  p.n_ra = 10.0;
   return p;
 }
 
@@ -266,6 +276,10 @@ State<T, M> rate(const Parameters<T>& par, const State<T, M>& s, const M& d) {
   const T critical = critical_coordination(par, s.lambda);
   const T excess = (s.coordination - critical) / critical;  // Eq. N3: over-coordination xi
   const T speed = exp(par.n_r * excess);  // Eq. N3: an over-coordinated network evolves faster
+  // Eq. N3b: the fabric at its own rate factor exp((n_r + n_ra) xi): a dense fabric reaches its
+  // critical norm within a few per cent of strain, a loose one over 20 % (n_ra = 0: exp(0) = 1,
+  // the law before it bit for bit).
+  const T fabric_speed = speed * exp(par.n_ra * excess);
   // How far the void ratio lies below the critical void ratio line e_c(Lambda) (N7b).
   const T log_force = log_normal_force(s.lambda);
   const T below_line = critical_void_ratio(par, log_force) - s.void_ratio;
@@ -277,23 +291,24 @@ State<T, M> rate(const Parameters<T>& par, const State<T, M>& s, const M& d) {
   // targets' state of N2c, (2/3) d_s = eps_q-rate times the unit triaxial direction (t(.) = 1 in
   // compression).
   auto towards = [&](const T& critical_norm, const T& slope, const T& rate_constant,
-                     const M& x) -> M {
-    return rate_constant * speed *
+                     const T& factor, const M& x) -> M {
+    return rate_constant * factor *
            (T(2.0 / 3.0) * (critical_norm + slope * target_state) * deviator - shear * x);
   };
   State<T, M> r;
   r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
   // Eq. N2d: the fabric's inherent part A_i fades r_i times as fast as the rest, dA_i = -r_i k_a
-  // exp(n_r xi) eps_q-rate A_i, and A relaxes towards its target plus what is left of it: under
+  // exp((n_r + n_ra) xi) eps_q-rate A_i, and A relaxes towards its target plus what is left of it: under
   // a fixed target A = target (1 - exp(-k eps_q)) + (A_0 - A_i0) exp(-k eps_q) + A_i0 exp(-r_i k
   // eps_q). With r_i = 1 or A_i = 0, A follows N2 alone, bit for bit.
-  r.fabric = towards(par.a_cs, par.a_z, par.k_a, s.fabric - (T(1.0) - par.r_i) * s.inherent);
-  r.inherent = (-(par.r_i * par.k_a * speed * shear)) * s.inherent;
-  r.normal = towards(par.f_cs, par.f_z, par.k_f, s.normal);
+  r.fabric = towards(par.a_cs, par.a_z, par.k_a, fabric_speed,
+                     s.fabric - (T(1.0) - par.r_i) * s.inherent);
+  r.inherent = (-(par.r_i * par.k_a * fabric_speed * shear)) * s.inherent;
+  r.normal = towards(par.f_cs, par.f_z, par.k_f, speed, s.normal);
   // Eq. N2b: the tangential anisotropy's target depends on the Lode angle of shearing (in the
   // DEM its critical norm in extension is about two thirds of that in compression).
   const T g = lode_factor(par.c_t, deviator, shear_squared);
-  r.tangential = towards(g * par.t_cs, g * par.t_z, par.k_t, s.tangential);
+  r.tangential = towards(g * par.t_cs, g * par.t_z, par.k_t, speed, s.tangential);
   // Eq. N7: the dilatancy times the shear rate; A:d_s = a_d eps_q-rate, a_d the fabric's norm
   // along the shear direction. N7b: and the distance to the critical void ratio, so that a loose
   // network's contraction stops at its line (d_psi = 0: none, the model before it bit for bit).
@@ -345,7 +360,8 @@ State<T, M> integrate(const Parameters<T>& par, const State<T, M>& start, const 
 inline constexpr double kUpdateSubstepSize = 0.05;
 
 /// Substeps so that no rate constant times a substep's strain exceeds `step_size`, at the rate
-/// factor exp(n_r xi) of the state `at` (the start of the increment). The stiffest coupling may
+/// factors exp(n_r xi) and the fabric's exp((n_r + n_ra) xi) of the state `at` (the start of the
+/// increment). The stiffest coupling may
 /// be ln Lambda's through Z_c(Lambda), Z and e_c(Lambda) in the dilatancy, kappa' (|d_z| zeta (1 +
 /// c_l Z/Z_c) + |d_a| + d_psi lambda_e) / 3, kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1)
 /// the stiffness of ln Lambda (N6).
@@ -355,9 +371,10 @@ int substeps_for(const Parameters<double>& par, const State<double, M>& at, doub
   const double critical = critical_coordination(par, at.lambda);
   const double excess = (at.coordination - critical) / critical;
   const double speed = std::exp(std::min(par.n_r * excess, 30.0));
+  const double fabric_speed = std::exp(std::min((par.n_r + par.n_ra) * excess, 30.0));
   const double kappa = par.kappa * stiffness_factor(par, log_normal_force(at.lambda));
   const double stiffest = std::max(
-      {speed * std::max({par.k_a, par.k_f, par.k_t}),
+      {speed * std::max(par.k_f, par.k_t), fabric_speed * par.k_a,
        par.k_z * std::exp(std::min(par.n_z * excess, 30.0)), kappa / 3.0,
        kappa / 3.0 *
            (std::abs(par.d_z) * std::abs(par.zeta) * (1.0 + par.c_l * at.coordination / critical) +

@@ -36,6 +36,9 @@
  *   PROPS(47)      r_i, how fast the fabric's inherent part fades, as a share of k_a
  *                  (docs/network-model.md Eq. N2d); 1 (with the rest of the fabric) when
  *                  NPROPS < 47. The initial fabric A_0 is all inherent.
+ *   PROPS(48)      n_ra, the fabric's rate exponent in the over-coordination over n_r: A
+ *                  relaxes at k_a exp((n_r + n_ra) xi) (docs/network-model.md Eq. N3b); 0 (at
+ *                  the forces' rate factor) when NPROPS < 48.
  * The mean normal force Lambda is set at the first increment so that the SFF stress of the initial
  * network has the mean stress of STRESS; from then on STRESS is the SFF stress of the state, whose
  * deviator is the one the anisotropies carry (the initial STRESS's deviator is not kept).
@@ -84,8 +87,8 @@ enum {
   SFFCAL_UMAT_NETWORK_PROP_PARAMETERS = 21,
   SFFCAL_UMAT_NETWORK_NPROPS_STATE = 20,
   SFFCAL_UMAT_NETWORK_NPROPS_ALL = 39,  /* the first version's 18 parameters */
-  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 47   /* and c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e, w_psi,
-                                           r_i */
+  SFFCAL_UMAT_NETWORK_NPROPS_MAX = 48   /* and c_t, c_l, n_kappa, d_psi, e_gamma, lambda_e, w_psi,
+                                           r_i, n_ra */
 };
 
 void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double* sse,
