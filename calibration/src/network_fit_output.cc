@@ -32,7 +32,7 @@ Json errors_json(const TestOutcome& o) {
           {"role", o.fitted ? "fitted" : "held back"},
           {"loading_path", to_string(o.test->path)},
           {"along_dem_strain_path",
-           {{"rms_eta", a.eta}, {"rms_coordination", a.coordination},
+           {{"complete", o.along.complete}, {"message", o.along.message}, {"rms_eta", a.eta}, {"rms_coordination", a.coordination},
             {"rms_lambda_relative", a.lambda}, {"rms_a_c", a.a_c}, {"rms_a_n", a.a_n},
             {"rms_a_t", a.a_t}}},
           {"predicted",
@@ -61,7 +61,8 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
     const Errors& a = o.along_errors;
     const Errors& b = o.predicted_errors;
     s << "| " << o.test->name << " | " << (o.fitted ? "fitted" : "held back") << " | "
-      << to_string(o.test->path) << " | " << number(a.eta, 3) << " | "
+      << to_string(o.test->path) << " | " << number(a.eta, 3)
+      << (o.along.complete ? "" : " (to the stop)") << " | "
       << number(a.coordination, 3) << " | " << number(a.lambda, 3) << " | " << number(a.a_c, 3)
       << " | " << number(a.a_n, 3) << " | " << number(a.a_t, 3) << " | " << number(b.eta, 3)
       << (o.predicted.complete ? "" : " (to the stop)") << " | " << number(b.volumetric, 3)
@@ -69,9 +70,13 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
       << number(b.lambda, 3) << " | " << number(b.a_c, 3) << " | " << number(b.a_n, 3) << " | "
       << number(b.a_t, 3) << " |\n";
   }
-  for (const TestOutcome& o : outcomes)
+  for (const TestOutcome& o : outcomes) {
+    if (!o.along.complete)
+      s << "\n" << o.test->name << ": the path along the DEM's strains stopped: "
+        << o.along.message << "\n";
     if (!o.predicted.complete)
       s << "\n" << o.test->name << ": the prediction stopped: " << o.predicted.message << "\n";
+  }
   s << "\nParameters (standard errors: robust to residuals correlated along each curve, and as if "
        "independent; - where the parameter was held: at a bound, c_t without an extension test, "
        "c_l and n_kappa without an undrained test, lambda_e at one pressure, r_i without a "
