@@ -618,17 +618,21 @@ std::vector<int> pressed_on_bounds(const std::vector<TestData>& tests, bool pred
 // bound keeps the step's predicted decrease far above the actual one: on the every-kind means, a
 // ratio of 0.02 at every step while the steps shrank to 1e-5, and the solve stopped at cost 1012.9
 // with c_v on its lower bound and c_l on its upper one. Held there, the same solve went on to
-// 1001.5 (docs/calibration.md, "Parameters pressed on their bounds"). So the solve is repeated
-// with the parameters it leaves pressed on their bounds held there, until that set stays the same
-// (KKT: the gradient of each held one points out of the box; one that would come back in is
-// freed), at most kBoundRounds times.
+// 1001.5 (docs/calibration.md, "The fabric's own rate exponent n_ra, and parameters pressed on
+// their bounds"). So the predicted-path solve is repeated with the parameters it leaves pressed on
+// their bounds held there, until that set stays the same (KKT: the gradient of each held one
+// points out of the box; one that would come back in is freed), at most kBoundRounds times. The
+// first stage, along the DEM's strain paths, keeps its one solve: with the rounds there too, its
+// deeper minima led the 500-clump matrix's predicted stage into another basin (3333.6 against
+// 3065.4).
 constexpr int kBoundRounds = 4;
 
 ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
                              const FitOptions& options, std::array<double, kNumParameters>& x,
                              bool hold_fabric_rate) {
   std::vector<int> held = held_parameters(tests, options);
-  if (hold_fabric_rate && std::find(held.begin(), held.end(), kFabricRateExponentIndex) == held.end())
+  if (hold_fabric_rate &&
+      std::find(held.begin(), held.end(), kFabricRateExponentIndex) == held.end())
     held.push_back(kFabricRateExponentIndex);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
@@ -741,7 +745,8 @@ namespace {
 // The fit's last stage (Eq. N3b): n_ra freed on the predicted paths from the best start's
 // solution, unless the options hold it. Each start holds it at its start value: freed in every
 // start, the first stage (along the DEM's strain paths) took the starts into other minima of
-// higher cost (docs/calibration.md, "The fabric's own rate exponent n_ra").
+// higher cost (docs/calibration.md, "The fabric's own rate exponent n_ra, and parameters pressed
+// on their bounds").
 void free_fabric_rate(const std::vector<TestData>& tests, const FitOptions& options,
                       FitResult& best) {
   const std::vector<int> held = held_parameters(tests, options);

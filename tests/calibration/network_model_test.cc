@@ -341,8 +341,8 @@ TEST(NetworkModel, TheFabricRelaxesAtItsOwnRateFactor) {
   EXPECT_EQ(fabric_substeps, static_cast<int>(std::ceil(k_fabric * d.norm() / kUpdateSubstepSize)));
   slow_forces.n_ra = 0.0;
   EXPECT_LT(substeps_for(slow_forces, s, d.norm()), fabric_substeps);
-  p.n_ra = 0.0;
   // n_ra = 0: the fabric at the forces' factor exp(n_r xi).
+  p.n_ra = 0.0;
   const State<double> shared = integrate(p, s, d, substeps);
   EXPECT_NEAR(triaxial_part(shared.fabric),
               a_target + (-0.2 - a_target) * std::exp(-p.k_a * std::exp(p.n_r * xi) * eps_q),
@@ -751,8 +751,8 @@ TEST(NetworkModel, AParameterPressedOnItsBoundEndsWhereHoldingItThereEnds) {
     FitOptions free = held;
     free.held = {"n_ra"};
     const FitResult with_bound = fit(noisy, truth, free), at_bound = fit(noisy, truth, held);
-    std::printf("noise %d: w_psi %.3g, cost %.9g; held at 0: %.9g\n", k, with_bound.parameters.w_psi,
-                with_bound.final_cost, at_bound.final_cost);
+    std::printf("noise %d: w_psi %.3g, cost %.9g; held at 0: %.9g\n", k,
+                with_bound.parameters.w_psi, with_bound.final_cost, at_bound.final_cost);
     if (with_bound.parameters.w_psi == lower_bounds().w_psi) {
       ++on_bound;
       EXPECT_NEAR(with_bound.final_cost, at_bound.final_cost, 1e-6 * at_bound.final_cost) << k;

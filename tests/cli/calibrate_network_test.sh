@@ -72,7 +72,8 @@ fi
 # the fit can only go down from there. w_psi held as in the fit (free, the refit leaves that
 # optimum for stiff rates: 929 -> 812 in 63 iterations of 4 s each).
 if "$sffcal" calibrate --model network "$runs/iso_dense_100kPa.h5" "$runs/iso_loose_100kPa.h5" \
-    --start fit/parameters.json --predicted-only --starts 1 --hold w_psi -o again > again.log 2>&1; then
+    --start fit/parameters.json --predicted-only --starts 1 --hold w_psi -o again \
+    > again.log 2>&1; then
   check "--start: said, and the refit ends at or below the first fit's cost" \
     "$python" -c "import json, sys
 first = json.load(open('fit/parameters.json'))['fit']['final_cost']

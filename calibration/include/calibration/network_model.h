@@ -298,9 +298,9 @@ State<T, M> rate(const Parameters<T>& par, const State<T, M>& s, const M& d) {
   State<T, M> r;
   r.void_ratio = -(T(1.0) + s.void_ratio) * volumetric;  // Eq. N1
   // Eq. N2d: the fabric's inherent part A_i fades r_i times as fast as the rest, dA_i = -r_i k_a
-  // exp((n_r + n_ra) xi) eps_q-rate A_i, and A relaxes towards its target plus what is left of it: under
-  // a fixed target A = target (1 - exp(-k eps_q)) + (A_0 - A_i0) exp(-k eps_q) + A_i0 exp(-r_i k
-  // eps_q). With r_i = 1 or A_i = 0, A follows N2 alone, bit for bit.
+  // exp((n_r + n_ra) xi) eps_q-rate A_i, and A relaxes towards its target plus what is left of
+  // it: under a fixed target A = target (1 - exp(-k eps_q)) + (A_0 - A_i0) exp(-k eps_q) + A_i0
+  // exp(-r_i k eps_q). With r_i = 1 or A_i = 0, A follows N2 alone, bit for bit.
   r.fabric = towards(par.a_cs, par.a_z, par.k_a, fabric_speed,
                      s.fabric - (T(1.0) - par.r_i) * s.inherent);
   r.inherent = (-(par.r_i * par.k_a * fabric_speed * shear)) * s.inherent;
@@ -361,10 +361,9 @@ inline constexpr double kUpdateSubstepSize = 0.05;
 
 /// Substeps so that no rate constant times a substep's strain exceeds `step_size`, at the rate
 /// factors exp(n_r xi) and the fabric's exp((n_r + n_ra) xi) of the state `at` (the start of the
-/// increment). The stiffest coupling may
-/// be ln Lambda's through Z_c(Lambda), Z and e_c(Lambda) in the dilatancy, kappa' (|d_z| zeta (1 +
-/// c_l Z/Z_c) + |d_a| + d_psi lambda_e) / 3, kappa' = kappa (Lambda / Lambda_ref)^(n_kappa - 1)
-/// the stiffness of ln Lambda (N6).
+/// increment). The stiffest coupling may be ln Lambda's through Z_c(Lambda), Z and e_c(Lambda) in
+/// the dilatancy, kappa' (|d_z| zeta (1 + c_l Z/Z_c) + |d_a| + d_psi lambda_e) / 3, kappa' = kappa
+/// (Lambda / Lambda_ref)^(n_kappa - 1) the stiffness of ln Lambda (N6).
 template <typename M>
 int substeps_for(const Parameters<double>& par, const State<double, M>& at, double strain_norm,
                  double step_size = kUpdateSubstepSize) {
