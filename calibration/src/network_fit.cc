@@ -614,8 +614,9 @@ std::vector<int> pressed_on_bounds(const std::vector<TestData>& tests, bool pred
 // predicted ones) from x, within the bounds; x holds the result. hold_fabric_rate: n_ra held too,
 // as in every start's stages (fit).
 //
-// Ceres keeps a step within the bounds by projecting it onto them, so a parameter pressed on its
-// bound keeps the step's predicted decrease far above the actual one: on the every-kind means, a
+// Ceres keeps a step within the bounds by a projected search along the trust-region step (not the
+// algorithm of Kanzow, Yamashita & Fukushima it follows: ceres-solver issue #187, open), so a
+// parameter pressed on its bound keeps the step's predicted decrease far above the actual one: on the every-kind means, a
 // ratio of 0.02 at every step while the steps shrank to 1e-5, and the solve stopped at cost 1012.9
 // with c_v on its lower bound and c_l on its upper one. Held there, the same solve went on to
 // 1001.5 (docs/calibration.md, "The fabric's own rate exponent n_ra, and parameters pressed on
