@@ -616,13 +616,14 @@ std::vector<int> pressed_on_bounds(const std::vector<TestData>& tests, bool pred
 //
 // Ceres keeps a step within the bounds by a projected search along the trust-region step (not the
 // algorithm of Kanzow, Yamashita & Fukushima it follows: ceres-solver issue #187, open), so a
-// parameter pressed on its bound keeps the step's predicted decrease far above the actual one: on the every-kind means, a
-// ratio of 0.02 at every step while the steps shrank to 1e-5, and the solve stopped at cost 1012.9
-// with c_v on its lower bound and c_l on its upper one. Held there, the same solve went on to
+// parameter pressed on its bound keeps the step's predicted decrease far above the actual one: on
+// the every-kind means, a ratio of 0.02 at every step while the steps shrank to 1e-5, and the
+// solve stopped at cost 1012.9 with c_v on its lower bound and c_l on its upper one. Held there, the same solve went on to
 // 1001.5 (docs/calibration.md, "The fabric's own rate exponent n_ra, and parameters pressed on
 // their bounds"). So the predicted-path solve is repeated with the parameters it leaves pressed on
 // their bounds held there, until that set stays the same (KKT: the gradient of each held one
-// points out of the box; one that would come back in is freed), at most kBoundRounds times. The
+// points out of the box; one that would come back in is freed), at most kBoundRounds times; a
+// later round that fails leaves the result of the one before. The
 // first stage, along the DEM's strain paths, keeps its one solve: with the rounds there too, its
 // deeper minima led the 500-clump matrix's predicted stage into another basin (3333.6 against
 // 3065.4).
@@ -647,8 +648,8 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
   // A start whose paths leave the admissible states is dropped here, quietly: Ceres would log
   // an error for it.
   double cost = 0.0;
-  if (!make_problem(tests, predicted, options, x, held)
-           ->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr)) {
+  std::unique_ptr<ceres::Problem> problem = make_problem(tests, predicted, options, x, held);
+  if (!problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr)) {
     summary.termination_type = ceres::FAILURE;
     summary.message = "the starting point's paths leave the admissible states";
     // Say where: the first test whose path stops, and why.
@@ -664,12 +665,19 @@ ceres::Solver::Summary solve(const std::vector<TestData>& tests, bool predicted,
   }
   std::vector<int> on_bounds;
   for (int round = 0; round < kBoundRounds; ++round) {
-    std::vector<int> fixed = held;
-    fixed.insert(fixed.end(), on_bounds.begin(), on_bounds.end());
+    const std::array<double, kNumParameters> before = x;
+    if (round > 0) {  // round 0 solves the problem the start was checked on
+      std::vector<int> fixed = held;
+      fixed.insert(fixed.end(), on_bounds.begin(), on_bounds.end());
+      problem = make_problem(tests, predicted, options, x, fixed);
+    }
     ceres::Solver::Summary this_round;
-    ceres::Solve(solver, make_problem(tests, predicted, options, x, fixed).get(), &this_round);
+    ceres::Solve(solver, problem.get(), &this_round);
     if (round == 0) {
       summary = this_round;
+    } else if (!this_round.IsSolutionUsable()) {
+      x = before;  // the round before keeps its result
+      break;
     } else {  // one summary of the rounds: the first's start, the last's end
       if (!this_round.iterations.empty())
         summary.iterations.insert(summary.iterations.end(), this_round.iterations.begin() + 1,
