@@ -21,7 +21,7 @@
 #include <set>
 #include <string>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 #include "fe_model/acst_material.h"
 #include "fe_model/solid.h"
 
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   try {
     fe_model::AcstInitialState initial;
     initial.void_ratio = void_ratio;
-    const fe_model::AcstMaterial material(calibration::read_parameters_json(argv[1]), initial);
+    const fe_model::AcstMaterial material(model::acst::read_parameters_json(argv[1]), initial);
 
     // The unit cube, symmetry planes x = 0, y = 0, z = 0 (boundary ids 0, 2, 4), the top face
     // (5) moved down, the confining pressure on x = 1 and y = 1 (1, 3): fe_model/triaxial.cc.

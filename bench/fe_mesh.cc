@@ -23,7 +23,7 @@
 #include <fstream>
 #include <string>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 #include "fe_model/acst_material.h"
 #include "fe_model/triaxial.h"
 
@@ -74,8 +74,8 @@ int main(int argc, char** argv) {
   const bool prints = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   if (!prints && !std::freopen("/dev/null", "w", stdout)) return 1;
   try {
-    const calibration::Parameters<double> parameters =
-        calibration::read_parameters_json(parameters_path);
+    const model::acst::Parameters<double> parameters =
+        model::acst::read_parameters_json(parameters_path);
     fe_model::AcstInitialState initial;
     initial.void_ratio = 0.8;
     const fe_model::AcstMaterial material(parameters, initial);

@@ -41,8 +41,8 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    const calibration::Parameters<double> parameters =
-        calibration::read_parameters_json(parameters_path);
+    const model::acst::Parameters<double> parameters =
+        model::acst::read_parameters_json(parameters_path);
     fe_model::AcstSpecimen specimen;  // 100 kPa, e_0 = 0.8, isotropic
     fe_model::AcstLoading loading;
     loading.axial_strain_end = 0.3;

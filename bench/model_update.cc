@@ -22,29 +22,29 @@
 
 #include <string>
 
-#include "calibration/acst_model.h"
-#include "calibration/material_point.h"
+#include "model/acst_model.h"
+#include "model/material_point.h"
 
 namespace {
 
-using calibration::IntegrationOptions;
-using calibration::State;
-using calibration::Tensor;
+using model::acst::IntegrationOptions;
+using model::acst::State;
+using model::acst::Tensor;
 
 // The Toyoura-like parameters of docs/model.md, from the example parameter file.
-const calibration::Parameters<double>& toyoura() {
-  static const calibration::Parameters<double> p =
-      calibration::read_parameters_json(SFFCAL_SOURCE_DIR "/examples/acst_toyoura.json");
+const model::acst::Parameters<double>& toyoura() {
+  static const model::acst::Parameters<double> p =
+      model::acst::read_parameters_json(SFFCAL_SOURCE_DIR "/examples/acst_toyoura.json");
   return p;
 }
 
 State<double> isotropic() {
-  return calibration::isotropic_state(100e3, 0.80, calibration::triaxial_deviator(0.3));
+  return model::acst::isotropic_state(100e3, 0.80, model::acst::triaxial_deviator(0.3));
 }
 
 State<double> plastic() {
   static const State<double> s =
-      calibration::drained_triaxial(toyoura(), isotropic(), 0.01, 50).state;
+      model::acst::drained_triaxial(toyoura(), isotropic(), 0.01, 50).state;
   return s;
 }
 
@@ -81,15 +81,15 @@ void run(benchmark::State& bench, bool with_tangent) {
   const State<double> start = bench.range(1) == 0 ? plastic() : isotropic();
   const Tensor<double> deps = increment(1e-4 * static_cast<double>(bench.range(2)));
   const IntegrationOptions options = integration(which);
-  const calibration::Parameters<double>& par = toyoura();
+  const model::acst::Parameters<double>& par = toyoura();
   State<double> end;
   Eigen::Matrix<double, 9, 9> tangent;
   long substeps = 0;
-  calibration::update_state(par, start, deps, end, options, &substeps);
+  model::acst::update_state(par, start, deps, end, options, &substeps);
   for (auto _ : bench) {
-    const calibration::UpdateStatus status =
-        with_tangent ? calibration::update_with_tangent(par, start, deps, end, tangent, options)
-                     : calibration::update_state(par, start, deps, end, options);
+    const model::acst::UpdateStatus status =
+        with_tangent ? model::acst::update_with_tangent(par, start, deps, end, tangent, options)
+                     : model::acst::update_state(par, start, deps, end, options);
     benchmark::DoNotOptimize(status);
     benchmark::DoNotOptimize(end.stress.data());
     benchmark::DoNotOptimize(tangent.data());
@@ -114,15 +114,15 @@ void cases(benchmark::internal::Benchmark* b) {
 
 // The implicit FE default with the tangent, increment 5e-4, from the state bench.range(1) names
 // (0: plastic, 1: crossing), with `par`; labelled `what` and the state.
-void update_with_tangent_of(benchmark::State& bench, const calibration::Parameters<double>& par,
+void update_with_tangent_of(benchmark::State& bench, const model::acst::Parameters<double>& par,
                             const std::string& what) {
   const State<double> start = bench.range(1) == 0 ? plastic() : isotropic();
   const Tensor<double> deps = increment(5e-4);
   State<double> end;
   Eigen::Matrix<double, 9, 9> tangent;
   for (auto _ : bench) {
-    const calibration::UpdateStatus status =
-        calibration::update_with_tangent(par, start, deps, end, tangent, IntegrationOptions());
+    const model::acst::UpdateStatus status =
+        model::acst::update_with_tangent(par, start, deps, end, tangent, IntegrationOptions());
     benchmark::DoNotOptimize(status);
     benchmark::DoNotOptimize(end.stress.data());
     benchmark::DoNotOptimize(tangent.data());
@@ -132,14 +132,14 @@ void update_with_tangent_of(benchmark::State& bench, const calibration::Paramete
 
 // {n_G in 1e-2, state}.
 void BM_UpdateWithTangentElasticExponent(benchmark::State& bench) {
-  calibration::Parameters<double> par = toyoura();
+  model::acst::Parameters<double> par = toyoura();
   par.n_G = 1e-2 * static_cast<double>(bench.range(0));
   update_with_tangent_of(bench, par, "n_G " + std::to_string(par.n_G).substr(0, 4));
 }
 
 // {n_F, state}.
 void BM_UpdateWithTangentFabricRate(benchmark::State& bench) {
-  calibration::Parameters<double> par = toyoura();
+  model::acst::Parameters<double> par = toyoura();
   par.n_F = static_cast<double>(bench.range(0));
   update_with_tangent_of(bench, par, "n_F " + std::to_string(bench.range(0)));
 }

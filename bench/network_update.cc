@@ -11,7 +11,7 @@
 //   network_update --benchmark_repetitions=10 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 #include "fe_model/acst_material.h"
 #include "fe_model/network_material.h"
 
@@ -41,7 +41,7 @@ fe_model::PointState sheared(const fe_model::Material& material) {
 const fe_model::NetworkMaterial& network() {
   static const fe_model::NetworkMaterial material = [] {
     double modulus = 0.0;
-    const auto par = calibration::network::read_parameters_json(
+    const auto par = model::network::read_parameters_json(
         SFFCAL_SOURCE_DIR "/bench/reference/network_paper_params.json", &modulus);
     fe_model::NetworkInitialState initial;
     initial.void_ratio = 0.574;
@@ -56,7 +56,7 @@ const fe_model::AcstMaterial& acst() {
     fe_model::AcstInitialState initial;
     initial.void_ratio = 0.80;
     return fe_model::AcstMaterial(
-        calibration::read_parameters_json(SFFCAL_SOURCE_DIR "/examples/acst_toyoura.json"),
+        model::acst::read_parameters_json(SFFCAL_SOURCE_DIR "/examples/acst_toyoura.json"),
         initial);
   }();
   return material;

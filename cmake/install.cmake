@@ -5,17 +5,17 @@
 # The model's interface needs only Eigen; sffcal::fe_model needs deal.II (found by the package).
 include(CMakePackageConfigHelpers)
 
-set(sffcal_install_targets acst_model sffcal_umat)
+set(sffcal_install_targets sffcal_model sffcal_umat)
 install(FILES
-  calibration/include/calibration/acst_model.h
-  calibration/include/calibration/acst_model_impl.h
-  calibration/include/calibration/acst_implicit.h
-  calibration/include/calibration/umat.h
-  calibration/include/calibration/network_model.h
-  calibration/include/calibration/network_tensor.h
-  calibration/include/calibration/network_update.h
-  calibration/include/calibration/umat_network.h
-  DESTINATION include/calibration)
+  model/include/model/acst_model.h
+  model/include/model/acst_model_impl.h
+  model/include/model/acst_implicit.h
+  model/include/model/umat.h
+  model/include/model/network_model.h
+  model/include/model/network_tensor.h
+  model/include/model/network_update.h
+  model/include/model/umat_network.h
+  DESTINATION include/model)
 set(SFFCAL_INSTALL_FE_MODEL OFF)
 if(TARGET fe_model)
   list(APPEND sffcal_install_targets fe_model)

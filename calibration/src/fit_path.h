@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "calibration/fit.h"
-#include "calibration/material_point.h"
+#include "model/material_point.h"
 
 namespace calibration {
 namespace fit_detail {

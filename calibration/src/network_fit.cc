@@ -16,7 +16,7 @@
 #include <string>
 #include <utility>
 
-#include "calibration/network_update.h"
+#include "model/network_update.h"
 #include "sff/sff_equation.h"
 
 namespace calibration::network {

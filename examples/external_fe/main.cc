@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <exception>
 
-#include "calibration/acst_model.h"   // sffcal::model
+#include "model/acst_model.h"  // sffcal::model
 #include "fe_model/acst_material.h"   // sffcal::fe_model
 #include "fe_model/solid.h"
 
@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   const double strain_end = argc > 2 ? std::atof(argv[2]) : 0.05;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 20;
   try {
-    const calibration::Parameters<double> parameters = calibration::read_parameters_json(argv[1]);
+    const model::acst::Parameters<double> parameters = model::acst::read_parameters_json(argv[1]);
     fe_model::AcstInitialState initial;
     initial.void_ratio = 0.8;
     const fe_model::AcstMaterial material(parameters, initial);

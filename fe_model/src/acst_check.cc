@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "calibration/material_point.h"
+#include "model/material_point.h"
 #include "fe_model/acst_material.h"
 #include "fe_model/triaxial.h"
 
@@ -47,75 +47,75 @@ std::string refused_confinement(const AcstSpecimen& specimen, const AcstLoading&
   std::ostringstream message;
   message << "confining pressure " << specimen.confining_pressure
           << " Pa is below the model's minimum mean stress " << loading.integration.min_pressure
-          << " Pa (calibration::IntegrationOptions::min_pressure)";
+          << " Pa (model::acst::IntegrationOptions::min_pressure)";
   return message.str();
 }
 
 }  // namespace
 
-Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters,
+Curve run_acst_driver_triaxial(const model::acst::Parameters<double>& parameters,
                                const AcstSpecimen& specimen, const AcstLoading& loading) {
   const auto t0 = std::chrono::steady_clock::now();
-  // calibration::drained_triaxial's path, increment by increment through the public
-  // calibration::mixed_increment, so that an increment whose Newton iterate keeps changing one of
+  // model::acst::drained_triaxial's path, increment by increment through the public
+  // model::acst::mixed_increment, so that an increment whose Newton iterate keeps changing one of
   // the integrator's discrete substep choices can be retried with a looser stress tolerance:
   // 1e-9 p first (above the integration noise, about 1e-10 |sigma| at the tight tolerance), then
   // 1e-8 p (the driver's default). The lateral stresses are held at sigma_3, no shear strain.
-  calibration::DriverOptions options;
+  model::acst::DriverOptions options;
   options.integration = loading.integration;
   options.max_newton_iterations = 50;
-  const calibration::State<double> initial = calibration::isotropic_state(
+  const model::acst::State<double> initial = model::acst::isotropic_state(
       specimen.confining_pressure, specimen.void_ratio, Eigen::Matrix3d(specimen.fabric));
   const double sigma_3 = specimen.confining_pressure;
   const double d_axial = loading.axial_strain_end / std::max(loading.n_steps, 1u);
-  const std::array<calibration::Control, 6> control = {
-      {calibration::Control::kStress, calibration::Control::kStress, calibration::Control::kStrain,
-       calibration::Control::kStrain, calibration::Control::kStrain, calibration::Control::kStrain}};
+  const std::array<model::acst::Control, 6> control = {
+      {model::acst::Control::kStress, model::acst::Control::kStress, model::acst::Control::kStrain,
+       model::acst::Control::kStrain, model::acst::Control::kStrain, model::acst::Control::kStrain}};
   const std::array<double, 6> value = {{sigma_3, sigma_3, d_axial, 0.0, 0.0, 0.0}};
 
   Curve curve;
   curve.label = "driver";
   curve.message = refused_confinement(specimen, loading);
   if (!curve.message.empty()) return curve;
-  calibration::State<double> state = initial;
+  model::acst::State<double> state = initial;
   Eigen::Matrix3d strain = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d guess = Eigen::Matrix3d::Zero();
-  auto record = [&](calibration::UpdateStatus status) {
-    const calibration::PointRecord<double> row =
-        calibration::make_record(parameters, state, strain, status);
+  auto record = [&](model::acst::UpdateStatus status) {
+    const model::acst::PointRecord<double> row =
+        model::acst::make_record(parameters, state, strain, status);
     CurvePoint point;
     point.axial_strain = row.axial_strain;
     point.volumetric_strain = row.volumetric_strain;
     point.p = row.p;
     point.q = row.q;
     point.void_ratio = row.void_ratio;
-    point.fabric_invariant = calibration::kSqrtTwoThirds * row.fabric_triaxial;  // F : n_c
-    point.status = calibration::to_string(status);
+    point.fabric_invariant = model::acst::kSqrtTwoThirds * row.fabric_triaxial;  // F : n_c
+    point.status = model::acst::to_string(status);
     curve.points.push_back(point);
   };
-  record(calibration::UpdateStatus::kOk);
+  record(model::acst::UpdateStatus::kOk);
   // An increment that fails at both tolerances is halved (as the FE solver cuts its step), down
   // to kMaxHalvings; the curve still gets one point per step, so that it lines up with the FE's.
   constexpr int kMaxHalvings = 6;
   for (unsigned int k = 0; k < loading.n_steps && curve.message.empty(); ++k) {
-    calibration::UpdateStatus worst = calibration::UpdateStatus::kOk;
+    model::acst::UpdateStatus worst = model::acst::UpdateStatus::kOk;
     double remaining = 1.0;  // fraction of the step still to apply
     double fraction = 1.0;   // fraction tried next
     while (remaining > 0.0) {
       fraction = std::min(fraction, remaining);
       std::array<double, 6> part = value;
       part[2] = fraction * d_axial;
-      calibration::UpdateStatus status = calibration::UpdateStatus::kFailed;
+      model::acst::UpdateStatus status = model::acst::UpdateStatus::kFailed;
       Eigen::Matrix3d deps;
-      calibration::State<double> next;
+      model::acst::State<double> next;
       for (const double tolerance : {1e-9, 1e-8}) {
         options.stress_tolerance = tolerance;
         deps = fraction * guess;
-        status = calibration::mixed_increment(parameters, state, control, part, deps, next, options);
-        if (status != calibration::UpdateStatus::kFailed) break;
+        status = model::acst::mixed_increment(parameters, state, control, part, deps, next, options);
+        if (status != model::acst::UpdateStatus::kFailed) break;
         ++curve.cuts;  // counted as a retry
       }
-      if (status == calibration::UpdateStatus::kFailed) {
+      if (status == model::acst::UpdateStatus::kFailed) {
         if (fraction > std::ldexp(1.0, -kMaxHalvings)) {
           fraction *= 0.5;
           ++curve.cuts;
@@ -127,7 +127,7 @@ Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters
                         " halvings (model update failure, or no Newton convergence to 1e-8 p)";
         break;
       }
-      if (status == calibration::UpdateStatus::kUnreliable) worst = status;
+      if (status == model::acst::UpdateStatus::kUnreliable) worst = status;
       state = next;
       strain += deps;
       guess = deps / fraction;
@@ -140,7 +140,7 @@ Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters
   return curve;
 }
 
-Curve run_acst_fe_triaxial(const calibration::Parameters<double>& parameters,
+Curve run_acst_fe_triaxial(const model::acst::Parameters<double>& parameters,
                            const AcstSpecimen& specimen, const AcstLoading& loading,
                            const AcstMeshOptions& mesh) {
   const std::string refused = refused_confinement(specimen, loading);

@@ -1,4 +1,4 @@
-// The ACST adapter: calibration::update_with_tangent behind fe_model::Material.
+// The ACST adapter: model::acst::update_with_tangent behind fe_model::Material.
 #include "fe_model/acst_material.h"
 
 #include "tensor_conversion.h"
@@ -18,7 +18,7 @@ using internal::to_eigen;
 using internal::unpack;
 
 // The strain increment and the start state, for failure messages.
-std::string describe(const SymmetricTensor2& increment, const calibration::State<double>& s) {
+std::string describe(const SymmetricTensor2& increment, const model::acst::State<double>& s) {
   std::ostringstream out;
   out << std::setprecision(6) << "strain increment (tension positive; 11 22 33 12 13 23) ["
       << increment[0][0] << ' ' << increment[1][1] << ' ' << increment[2][2] << ' '
@@ -30,13 +30,13 @@ std::string describe(const SymmetricTensor2& increment, const calibration::State
   return out.str();
 }
 
-MaterialStatus convert(calibration::UpdateStatus status) {
+MaterialStatus convert(model::acst::UpdateStatus status) {
   switch (status) {
-    case calibration::UpdateStatus::kOk:
+    case model::acst::UpdateStatus::kOk:
       return MaterialStatus::kOk;
-    case calibration::UpdateStatus::kUnreliable:
+    case model::acst::UpdateStatus::kUnreliable:
       return MaterialStatus::kUnreliable;
-    case calibration::UpdateStatus::kFailed:
+    case model::acst::UpdateStatus::kFailed:
       return MaterialStatus::kFailed;
   }
   return MaterialStatus::kFailed;
@@ -44,12 +44,12 @@ MaterialStatus convert(calibration::UpdateStatus status) {
 
 }  // namespace
 
-AcstMaterial::AcstMaterial(const calibration::Parameters<double>& parameters,
+AcstMaterial::AcstMaterial(const model::acst::Parameters<double>& parameters,
                            const AcstInitialState& initial_state,
-                           const calibration::IntegrationOptions& options)
+                           const model::acst::IntegrationOptions& options)
     : parameters_(parameters), initial_(initial_state), options_(options) {
-  calibration::validate_parameters(parameters);  // throws, naming the parameter
-  if (!calibration::is_admissible_void_ratio(initial_state.void_ratio))
+  model::acst::validate_parameters(parameters);  // throws, naming the parameter
+  if (!model::acst::is_admissible_void_ratio(initial_state.void_ratio))
     throw std::invalid_argument("AcstMaterial: initial void ratio " +
                                 std::to_string(initial_state.void_ratio) +
                                 " is not physical: it must be in (0, 2.97)");
@@ -57,13 +57,13 @@ AcstMaterial::AcstMaterial(const calibration::Parameters<double>& parameters,
     throw std::invalid_argument("AcstMaterial: the initial fabric is not finite");
 }
 
-calibration::State<double> AcstMaterial::to_model(const PointState& state) {
+model::acst::State<double> AcstMaterial::to_model(const PointState& state) {
   if (state.internal_variables.size() != kNumInternalVariables) {
     throw std::logic_error("AcstMaterial: point state has " +
                            std::to_string(state.internal_variables.size()) +
                            " internal variables, expected 28 (not an ACST state?)");
   }
-  calibration::State<double> model;
+  model::acst::State<double> model;
   model.stress = -to_eigen(state.stress);  // tension positive -> compression positive
   model.void_ratio = state.internal_variables[0];
   model.alpha = unpack(state.internal_variables, 1);
@@ -72,7 +72,7 @@ calibration::State<double> AcstMaterial::to_model(const PointState& state) {
   return model;
 }
 
-void AcstMaterial::from_model(const calibration::State<double>& model,
+void AcstMaterial::from_model(const model::acst::State<double>& model,
                               const SymmetricTensor2& strain, PointState& state) {
   state.stress = -to_deal(model.stress);  // compression positive -> tension positive
   state.strain = strain;
@@ -84,7 +84,7 @@ void AcstMaterial::from_model(const calibration::State<double>& model,
 }
 
 PointState AcstMaterial::initial_state(const SymmetricTensor2& initial_stress) const {
-  calibration::State<double> model;
+  model::acst::State<double> model;
   model.stress = -to_eigen(initial_stress);
   model.void_ratio = initial_.void_ratio;
   const double p = model.stress.trace() / 3.0;
@@ -100,12 +100,12 @@ PointState AcstMaterial::initial_state(const SymmetricTensor2& initial_stress) c
 MaterialUpdate AcstMaterial::update(const PointState& start,
                                     const SymmetricTensor2& strain_increment,
                                     PointState& end) const {
-  const calibration::State<double> model_start = to_model(start);
-  calibration::State<double> model_end = model_start;
+  const model::acst::State<double> model_start = to_model(start);
+  model::acst::State<double> model_end = model_start;
   Eigen::Matrix<double, 9, 9> D;
   const Eigen::Matrix3d increment = -to_eigen(strain_increment);  // -> compression positive
-  calibration::UpdateReport report;
-  const calibration::UpdateStatus status = calibration::update_with_tangent(
+  model::acst::UpdateReport report;
+  const model::acst::UpdateStatus status = model::acst::update_with_tangent(
       parameters_, model_start, increment, model_end, D, options_, &report);
 
   MaterialUpdate result;

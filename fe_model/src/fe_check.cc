@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 #include "fe_model/acst_check.h"
 #include "runfile/dem_test.h"
 
@@ -84,7 +84,7 @@ DemRun read_dem_run(const std::string& path, double a_cs) {
     run.fabric.completed = true;
     std::size_t first = 0;
     for (std::size_t i = 0; i < f.axial_strain.size(); ++i) {
-      const double fabric = calibration::kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
+      const double fabric = model::acst::kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
       run.fabric.points.push_back(curve_point(f.axial_strain[i], kNone, f.p[i], f.q[i], f.void_ratio[i], fabric));
       if (f.axial_strain[i] < f.axial_strain[first]) first = i;
     }
@@ -205,8 +205,8 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
     throw std::invalid_argument("the contact-network model starts from a DEM run's network (Z, "
                                 "Lambda, anisotropies): give it with --dem RUN.h5");
   double youngs_modulus = 0.0;
-  const net::Parameters<double> parameters =
-      net::read_parameters_json(options.parameters_path, &youngs_modulus);
+  const model::network::Parameters<double> parameters =
+      model::network::read_parameters_json(options.parameters_path, &youngs_modulus);
   const fs::path out_folder(options.output_folder);
   fs::create_directories(out_folder);
   AcstLoading loading;
@@ -220,10 +220,10 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
   FeCheckResult result;
   for (const std::string& path : options.dem_runs) {
     // The network's fabric invariant is a_c itself: A:n_c / a_cs with a_cs = sqrt(2/3).
-    const DemRun dem = read_dem_run(path, calibration::kSqrtTwoThirds);
+    const DemRun dem = read_dem_run(path, model::acst::kSqrtTwoThirds);
     const calibration::TestData test =
         net::with_closing_normal_anisotropy(calibration::read_run_file(path));
-    const net::State<double> start = net::initial_state(test);
+    const model::network::State<double> start = net::initial_state(test);
     NetworkInitialState initial;
     initial.void_ratio = start.void_ratio;
     initial.coordination = start.coordination;
@@ -235,12 +235,12 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
     fs::create_directories(folder);
     log(format("\ncase %s: sigma_3 = %.4g kPa, e_0 = %.4g, Z_0 = %.4g, a_c0 = %.3g, a_n0 = %.3g",
                dem.name.c_str(), dem.confining_pressure / 1e3, initial.void_ratio,
-               initial.coordination, net::triaxial_part(start.fabric),
-               net::triaxial_part(start.normal)));
+               initial.coordination, model::network::triaxial_part(start.fabric),
+               model::network::triaxial_part(start.normal)));
 
     // The material point on the element's axial strains, from the element's initial state.
     const auto t0 = std::chrono::steady_clock::now();
-    const net::State<double> point0 = NetworkMaterial::to_model(
+    const model::network::State<double> point0 = NetworkMaterial::to_model(
         material.initial_state(-dem.confining_pressure * dealii::unit_symmetric_tensor<3>()));
     calibration::TestData path_test = test;
     path_test.axial_strain.clear();
@@ -259,7 +259,7 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
     path_test.a_t = {test.a_t.front()};
     path_test.mobilisation = path_test.snapshot_eta = {0.0};
     net::FitOptions driver_options;  // the element's substeps (network_update.h)
-    driver_options.substep_size = net::kUpdateSubstepSize;
+    driver_options.substep_size = model::network::kUpdateSubstepSize;
     const net::Curve point = net::predict(parameters, path_test, driver_options,
                                           dem.confining_pressure);  // the FE's traction
     Curve driver;
@@ -309,11 +309,11 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
     throw std::invalid_argument("--model-tol must be in [0, 1e-2] (0: no substep error control)");
   for (double p : options.pressures)
     if (!(p > 0.0)) throw std::invalid_argument("--pressures must be positive [Pa]");
-  if (!calibration::is_admissible_void_ratio(options.void_ratio))
+  if (!model::acst::is_admissible_void_ratio(options.void_ratio))
     throw std::invalid_argument("--void-ratio " + format_value(options.void_ratio) +
                                 " is not a void ratio the model can carry: it must be in (0, 2.97)");
 
-  const std::string model = calibration::parameter_file_model(options.parameters_path);
+  const std::string model = model::acst::parameter_file_model(options.parameters_path);
   if (model == "contact_network") {
 #ifdef SFFCAL_FE_CHECK_NETWORK
     return run_network_fe_check(options, log);
@@ -327,8 +327,8 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
                                 model + "' (fe-check reads \"acst\" and \"contact_network\")");
 
   // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
-  const calibration::Parameters<double> parameters =
-      calibration::read_parameters_json(options.parameters_path);
+  const model::acst::Parameters<double> parameters =
+      model::acst::read_parameters_json(options.parameters_path);
   double a_cs = kDefaultAcs;
   std::string a_cs_source = "default (dense_100kPa_2000 critical state, docs/fe.md)";
   if (options.a_cs > 0.0) {
@@ -391,7 +391,7 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
                                                         c.specimen.fabric(1, 1));
     log(format("\ncase %s: sigma_3 = %.4g kPa, e_0 = %.4g, F_0:n_c = %.4g (%s)", c.name.c_str(),
                c.specimen.confining_pressure / 1e3, c.specimen.void_ratio,
-               calibration::kSqrtTwoThirds * f0, c.fabric_source.c_str()));
+               model::acst::kSqrtTwoThirds * f0, c.fabric_source.c_str()));
 
     const Curve driver = run_acst_driver_triaxial(parameters, c.specimen, loading);
     write_curve_csv((folder / "driver.csv").string(), driver);

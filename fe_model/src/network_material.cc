@@ -1,17 +1,17 @@
-// The contact-network adapter: calibration/network_model.h behind fe_model::Material.
+// The contact-network adapter: model/network_model.h behind fe_model::Material.
 #include "fe_model/network_material.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "calibration/network_update.h"
+#include "model/network_update.h"
 #include "tensor_conversion.h"
 
 namespace fe_model {
 namespace {
 
-namespace net = calibration::network;
+namespace net = model::network;
 using internal::pack;
 using internal::to_deal;
 using internal::to_eigen;

@@ -1,4 +1,4 @@
-// The contact-network model (calibration/network_model.h, docs/network-model.md): its stress
+// The contact-network model (model/network_model.h, docs/network-model.md): its stress
 // against sff/'s SFF equation, its laws against their closed forms, the critical state, frame
 // indifference, the drained driver, the fit's derivatives against centred differences and a fit
 // that recovers synthetic data.
@@ -18,11 +18,17 @@
 #include <string>
 
 #include "calibration/network_fit.h"
-#include "calibration/network_model.h"
+#include "model/network_model.h"
 #include "sff/sff_equation.h"
 
 namespace calibration::network {
 namespace {
+
+// The model's names beside those the fits use (calibration/network_fit.h).
+using model::network::critical_coordination;
+using model::network::kUpdateSubstepSize;
+using model::network::lode_factor;
+using model::network::log_normal_force;
 
 Parameters<double> plausible() {
   Parameters<double> p = default_start();

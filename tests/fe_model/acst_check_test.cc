@@ -21,8 +21,8 @@ namespace {
 // The example parameter file of the repository (DM04's Toyoura values and our fabric part).
 const std::string kExampleParameters = std::string(SFFCAL_SOURCE_DIR) + "/examples/acst_toyoura.json";
 
-calibration::Parameters<double> parameters() {
-  return calibration::read_parameters_json(kExampleParameters);
+model::acst::Parameters<double> parameters() {
+  return model::acst::read_parameters_json(kExampleParameters);
 }
 
 // An anisotropic initial fabric (F_0 : n_c = 0.2), so that the fabric part is exercised too.
@@ -85,7 +85,7 @@ int expect_quadratic_newton(const Curve& element) {
 }
 
 TEST(AcstCheck, SingleElementReproducesTheDriverAt100To300kPa) {
-  const calibration::Parameters<double> par = parameters();
+  const model::acst::Parameters<double> par = parameters();
   for (const double pressure : {100e3, 200e3, 300e3}) {
     SCOPED_TRACE("confining pressure " + std::to_string(pressure));
     const Curve driver = run_acst_driver_triaxial(par, specimen(pressure), loading());
@@ -121,7 +121,7 @@ TEST(AcstCheck, SingleElementReproducesTheDriverAt100To300kPa) {
 }
 
 TEST(AcstCheck, SmallMeshGivesTheHomogeneousAnswer) {
-  const calibration::Parameters<double> par = parameters();
+  const model::acst::Parameters<double> par = parameters();
   AcstLoading short_loading = loading();  // 2x2x4 = 128 points: fewer, larger steps
   short_loading.axial_strain_end = 0.005;  // one plastic step: yield is crossed inside it
   short_loading.n_steps = 1;
@@ -148,7 +148,7 @@ TEST(AcstCheck, SmallMeshGivesTheHomogeneousAnswer) {
 // The command's default increment is 0.3 / 100 = 0.003; ten times that is 0.03 per step. The run
 // must converge through step cutting or stop with a clear message, and never produce NaN.
 TEST(AcstCheck, TenfoldStrainIncrementCutsOrFailsClearlyNeverNaN) {
-  const calibration::Parameters<double> par = parameters();
+  const model::acst::Parameters<double> par = parameters();
   AcstLoading coarse;
   coarse.axial_strain_end = 0.06;
   coarse.n_steps = 2;
@@ -196,7 +196,7 @@ TEST(AcstCheck, TenfoldStrainIncrementCutsOrFailsClearlyNeverNaN) {
 // halve an increment here where the FE did not (or the reverse), and the drained path then
 // differs by its discretisation: the comparison is to 1e-3, not to round-off.
 TEST(AcstCheck, NearZeroConfinementFollowsTheDriverOrStopsClearly) {
-  const calibration::Parameters<double> par = parameters();
+  const model::acst::Parameters<double> par = parameters();
   AcstLoading short_path;
   short_path.axial_strain_end = 0.01;
   short_path.n_steps = 5;
@@ -261,7 +261,7 @@ TEST(AcstCheck, DemComparisonInterpolatesTheModelAtTheDemStrains) {
 }
 
 TEST(AcstCheck, ExampleParameterFileAndFabricNormalisation) {
-  const calibration::Parameters<double> par = parameters();
+  const model::acst::Parameters<double> par = parameters();
   EXPECT_DOUBLE_EQ(par.G0, 125.0);
   EXPECT_DOUBLE_EQ(par.M_c, 1.25);
   EXPECT_DOUBLE_EQ(par.k_F, 5.0);

@@ -16,8 +16,8 @@ namespace fe_model {
 namespace {
 
 // Toyoura-sand-like values of Dafalias & Manzari (2004), with a fabric part of our choosing.
-calibration::Parameters<double> parameters() {
-  calibration::Parameters<double> p;
+model::acst::Parameters<double> parameters() {
+  model::acst::Parameters<double> p;
   p.G0 = 125.0;
   p.nu = 0.05;
   p.M_c = 1.25;
@@ -47,7 +47,7 @@ TEST(AcstMaterial, ConvertsSignsAndPacksTheState) {
   stress[2][2] = -150e3;
   const PointState state = material.initial_state(stress);
   ASSERT_EQ(state.internal_variables.size(), AcstMaterial::kNumInternalVariables);
-  const calibration::State<double> model = AcstMaterial::to_model(state);
+  const model::acst::State<double> model = AcstMaterial::to_model(state);
   EXPECT_DOUBLE_EQ(model.stress(2, 2), 150e3);  // compression positive in the model
   EXPECT_DOUBLE_EQ(model.void_ratio, 0.8);
   EXPECT_NEAR(model.alpha.trace(), 0.0, 1e-15);

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 #include "fe_model/acst_material.h"
 #include "fe_model/triaxial.h"
 #include "test_materials.h"
@@ -90,7 +90,7 @@ TEST(DistributedTriaxial, GivesTheSerialAnswerForANonlinearLaw) {
 
 // The ACST model (elastic cone crossing, plastic flow, dilatancy) on a bulging mesh.
 TEST(DistributedTriaxial, GivesTheSerialAnswerForTheAcstModel) {
-  const calibration::Parameters<double> parameters = calibration::read_parameters_json(
+  const model::acst::Parameters<double> parameters = model::acst::read_parameters_json(
       std::string(SFFCAL_SOURCE_DIR) + "/examples/acst_toyoura.json");
   AcstInitialState initial;
   initial.void_ratio = 0.8;

@@ -20,8 +20,8 @@ namespace {
 namespace net = calibration::network;
 
 // Values of the order of the paper-size fit (docs/network-model.md).
-net::Parameters<double> parameters() {
-  net::Parameters<double> p = net::default_start();
+model::network::Parameters<double> parameters() {
+  model::network::Parameters<double> p = net::default_start();
   p.kappa = 80.0, p.c_v = 4.0, p.a_z = 0.9, p.k_a = 15.0, p.f_z = 2.0, p.t_z = 0.2;
   p.d_z = 2.3, p.d_a = 0.5, p.n_r = 1.3, p.n_z = 4.0, p.k_z = 4.0;
   p.d_psi = 1.0, p.e_gamma = 0.62;  // a critical void ratio line a little above the dense one (N7b)
@@ -40,7 +40,7 @@ TEST(NetworkMaterial, PacksTheStateAndStartsAtTheInitialMeanStress) {
   const PointState state = material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>());
   ASSERT_EQ(state.internal_variables.size(), NetworkMaterial::kNumInternalVariables);
   for (unsigned int i = 0; i < 3; ++i) EXPECT_NEAR(state.stress[i][i], -100e3, 1e-9);
-  const net::State<double> model = NetworkMaterial::to_model(state);
+  const model::network::State<double> model = NetworkMaterial::to_model(state);
   // Lambda = 3 p (1 + e) / (E Z) for an isotropic network (sff-theory.md §4).
   EXPECT_NEAR(model.lambda, 3.0 * 100e3 * 1.58 / (150e6 * 6.7), 1e-18);
   EXPECT_NEAR(*material.fabric_invariant(state), 0.0, 1e-15);
@@ -88,14 +88,14 @@ TEST(NetworkMaterial, OneElementDrainedTriaxialIsTheMaterialPointPrediction) {
   t.p.assign(n, 100e3);
   t.e0 = 0.58;
   t.p0 = 100e3;
-  const net::State<double> initial =
+  const model::network::State<double> initial =
       NetworkMaterial::to_model(material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>()));
   t.snapshot_axial_strain = {0.0};
   t.coordination = {initial.coordination};
   t.lambda = {initial.lambda};
   t.a_c = t.a_n = t.a_t = t.mobilisation = t.snapshot_eta = {0.0};
   net::FitOptions driver;  // the element's substeps
-  driver.substep_size = net::kUpdateSubstepSize;
+  driver.substep_size = model::network::kUpdateSubstepSize;
   const net::Curve point = net::predict(parameters(), t, driver);
   ASSERT_TRUE(point.complete) << point.message;
   ASSERT_EQ(point.eta.size(), n);
@@ -203,7 +203,7 @@ TEST(NetworkMaterial, RefusesNonPhysicalInputByName) {
   NetworkInitialState bad = dense();
   bad.coordination = 0.0;
   EXPECT_THROW(NetworkMaterial(parameters(), bad, net::kDemYoungsModulus), std::invalid_argument);
-  net::Parameters<double> p = parameters();
+  model::network::Parameters<double> p = parameters();
   p.kappa = -1.0;
   try {
     NetworkMaterial material(p, dense(), net::kDemYoungsModulus);

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "calibration/network_fit.h"
-#include "calibration/network_update.h"
+#include "model/network_update.h"
 
 namespace net = calibration::network;
 
@@ -15,8 +15,8 @@ extern "C" int network_reference_parameters(const char* parameter_file,
                                             int message_size) {
   try {
     const auto values =
-        net::to_array(net::read_parameters_json(parameter_file, youngs_and_parameters));
-    for (int i = 0; i < net::kNumParameters; ++i) youngs_and_parameters[1 + i] = values[i];
+        model::network::to_array(model::network::read_parameters_json(parameter_file, youngs_and_parameters));
+    for (int i = 0; i < model::network::kNumParameters; ++i) youngs_and_parameters[1 + i] = values[i];
     return 0;
   } catch (const std::exception& e) {
     std::snprintf(message, static_cast<size_t>(message_size), "%s", e.what());
@@ -33,8 +33,8 @@ extern "C" int network_reference_drained_triaxial(const double* youngs_and_param
   try {
     if (youngs_and_parameters[0] != net::kDemYoungsModulus)
       throw std::runtime_error("the driver takes E = 150 MPa, the DEM's");
-    const net::Parameters<double> par = net::from_array(youngs_and_parameters + 1);
-    net::State<double> network{e0, z0, 0.0, net::axisymmetric(a_c), net::axisymmetric(a_n),
+    const model::network::Parameters<double> par = model::network::from_array(youngs_and_parameters + 1);
+    model::network::State<double> network{e0, z0, 0.0, net::axisymmetric(a_c), net::axisymmetric(a_n),
                                net::axisymmetric(a_t)};
     calibration::TestData test;
     test.name = "umat reference";
@@ -46,12 +46,12 @@ extern "C" int network_reference_drained_triaxial(const double* youngs_and_param
     }
     test.snapshot_axial_strain = {0.0};
     test.coordination = {z0};
-    test.lambda = {net::lambda_for_mean_stress(network, p0, net::kDemYoungsModulus)};
+    test.lambda = {model::network::lambda_for_mean_stress(network, p0, net::kDemYoungsModulus)};
     test.a_c = {a_c};
     test.a_n = {a_n};
     test.a_t = {a_t};
     net::FitOptions driver;  // the update's substeps, as the UMAT's
-    driver.substep_size = net::kUpdateSubstepSize;
+    driver.substep_size = model::network::kUpdateSubstepSize;
     const net::Curve c = net::predict(par, test, driver, p0);
     if (!c.complete) throw std::runtime_error(c.message);
     for (int k = 0; k < increments; ++k) {

@@ -8,7 +8,7 @@ extern "C" {
 #endif
 
 /* E [Pa] then the 27 parameters of a contact-network parameter file, in the order of
- * calibration/umat_network.h (PROPS 21..48). Returns 0, or -1 with the reason in message. */
+ * model/umat_network.h (PROPS 21..48). Returns 0, or -1 with the reason in message. */
 int network_reference_parameters(const char* parameter_file, double* youngs_and_parameters,
                                  char* message, int message_size);
 

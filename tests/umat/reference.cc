@@ -4,14 +4,14 @@
 #include <cstdio>
 #include <exception>
 
-#include "calibration/material_point.h"
+#include "model/material_point.h"
 
 extern "C" int reference_parameters(const char* parameter_file, double* parameters,
                                     char* message, int message_size) {
   try {
-    const calibration::Parameters<double> p = calibration::read_parameters_json(parameter_file);
+    const model::acst::Parameters<double> p = model::acst::read_parameters_json(parameter_file);
     int i = 0;
-    for (const auto& field : calibration::kParameterFields<double>) parameters[i++] = p.*field.member;
+    for (const auto& field : model::acst::kParameterFields<double>) parameters[i++] = p.*field.member;
     return 0;
   } catch (const std::exception& e) {
     std::snprintf(message, static_cast<size_t>(message_size), "%s", e.what());
@@ -23,14 +23,14 @@ extern "C" int reference_drained_triaxial(const double* parameters, double p0, d
                                           double f, double axial_strain_end, int increments,
                                           double* q, double* volumetric_strain) {
   const double* v = parameters;
-  calibration::Parameters<double> par;
+  model::acst::Parameters<double> par;
   int k = 0;
-  for (const auto& field : calibration::kParameterFields<double>) par.*field.member = v[k++];
-  calibration::DriverOptions options;
-  options.integration = calibration::IntegrationOptions();  // what the UMAT entry integrates with
+  for (const auto& field : model::acst::kParameterFields<double>) par.*field.member = v[k++];
+  model::acst::DriverOptions options;
+  options.integration = model::acst::IntegrationOptions();  // what the UMAT entry integrates with
   options.stress_tolerance = 1e-12;
-  const calibration::PathResult<double> r = calibration::drained_triaxial(
-      par, calibration::isotropic_state(p0, e0, calibration::triaxial_deviator(f)),
+  const model::acst::PathResult<double> r = model::acst::drained_triaxial(
+      par, model::acst::isotropic_state(p0, e0, model::acst::triaxial_deviator(f)),
       axial_strain_end, increments, options);
   if (r.rows.size() != static_cast<size_t>(increments) + 1) return -1;
   for (int i = 0; i < increments; ++i) {

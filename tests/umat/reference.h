@@ -1,4 +1,4 @@
-/* The material-point driver (calibration/material_point.h) behind C linkage, as the reference
+/* The material-point driver (model/material_point.h) behind C linkage, as the reference
  * the UMAT C test (umat_test.c) is checked against. */
 #ifndef SFFCAL_TESTS_UMAT_REFERENCE_H_
 #define SFFCAL_TESTS_UMAT_REFERENCE_H_
@@ -7,7 +7,7 @@
 extern "C" {
 #endif
 
-/* The 17 ACST parameters of a parameter file, in the order of calibration/umat.h (PROPS 8..24).
+/* The 17 ACST parameters of a parameter file, in the order of model/umat.h (PROPS 8..24).
  * Returns 0, or -1 with the reason in message (of length message_size). */
 int reference_parameters(const char* parameter_file, double* parameters, char* message,
                          int message_size);

@@ -9,7 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "calibration/umat.h"
+#include "model/umat.h"
 
 void umat_(double* stress, double* statev, double* ddsdde, double* sse, double* spd, double* scd,
            double* rpl, double* ddsddt, double* drplde, double* drpldt, const double* stran,

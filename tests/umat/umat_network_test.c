@@ -1,4 +1,4 @@
-/* The contact-network UMAT entry (calibration/umat_network.h) driven as Abaqus/Standard would call
+/* The contact-network UMAT entry (model/umat_network.h) driven as Abaqus/Standard would call
  * it, through umat_ in the shared library sffcal_umat with a material named CONTACT_NETWORK-...:
  * a drained triaxial path with the lateral stress held by a Newton iteration on DDSDDE against the
  * fit's drained prediction (network_reference.h); the initial mean stress and the void ratio in
@@ -12,8 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibration/umat.h"
-#include "calibration/umat_network.h"
+#include "model/umat.h"
+#include "model/umat_network.h"
 #include "network_reference.h"
 #include "umat_driver.h"
 

@@ -1,4 +1,4 @@
-/* The UMAT entry (calibration/umat.h) driven as Abaqus/Standard would call it, through umat_ in
+/* The UMAT entry (model/umat.h) driven as Abaqus/Standard would call it, through umat_ in
  * the shared library sffcal_umat: a drained triaxial path with the lateral stress held by a
  * Newton iteration on DDSDDE, checked against the material-point driver (reference.h) to 1e-8;
  * DDSDDE against centred differences in the UMAT's own conventions; the PROPS and the
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "calibration/umat.h"
+#include "model/umat.h"
 #include "reference.h"
 #include "umat_driver.h"
 

@@ -14,14 +14,41 @@
 #include <string>
 #include <vector>
 
-#include "calibration/acst_model.h"
-#include "calibration/material_point.h"
+#include "model/acst_model.h"
+#include "model/material_point.h"
 
 namespace ceres {
 class Problem;
 }
 
 namespace calibration {
+
+// The ACST model's names (model/acst_model.h, model/material_point.h) as the fits use them.
+using model::acst::cast_parameters;
+using model::acst::cast_state;
+using model::acst::Control;
+using model::acst::DriverOptions;
+using model::acst::IntegrationOptions;
+using model::acst::is_admissible_void_ratio;
+using model::acst::isotropic_state;
+using model::acst::kAtmosphericPressure;
+using model::acst::kParameterFields;
+using model::acst::kSqrtTwoThirds;
+using model::acst::make_record;
+using model::acst::mixed_increment;
+using model::acst::ParameterAnnotation;
+using model::acst::Parameters;
+using model::acst::PathResult;
+using model::acst::PathStep;
+using model::acst::read_parameters_json;
+using model::acst::State;
+using model::acst::Tensor;
+using model::acst::to_string;
+using model::acst::triaxial_deviator;
+using model::acst::update_state;
+using model::acst::UpdateStatus;
+using model::acst::value_of;
+using model::acst::write_parameters_json;
 
 /// The loading path of a DEM test as the fit's model path follows it (docs/dem.md, "Loading
 /// paths"; the spellings are the run file's /loading path): z is driven, x and y are held alike.

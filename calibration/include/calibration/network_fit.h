@@ -16,9 +16,45 @@
 #include <vector>
 
 #include "calibration/fit.h"
-#include "calibration/network_model.h"
+#include "model/network_model.h"
+#include "model/network_update.h"
 
 namespace calibration::network {
+
+// The contact-network model's names (model/network_model.h) as the fits use them.
+using model::network::admissible;
+using model::network::DiagonalTensor;
+using model::network::from_array;
+using model::network::integrate;
+using model::network::kCriticalSlopeIndex;
+using model::network::kCriticalVoidRatioIndex;
+using model::network::kFabricRateExponentIndex;
+using model::network::kInherentFadeIndex;
+using model::network::kLambdaExponentIndex;
+using model::network::kLambdaGainIndex;
+using model::network::kLambdaReference;
+using model::network::kLodeFactorIndex;
+using model::network::kNumFirstVersionParameters;
+using model::network::kNumParameters;
+using model::network::kStateDilatancyIndex;
+using model::network::kTargetVoidRatioWeightIndex;
+using model::network::lateral_component;
+using model::network::lower_bounds;
+using model::network::map_components;
+using model::network::parameter_names;
+using model::network::Parameters;
+using model::network::rate;
+using model::network::read_parameters_json;
+using model::network::State;
+using model::network::stress;
+using model::network::substeps_for;
+using model::network::Tensor;
+using model::network::to_array;
+using model::network::trace;
+using model::network::triaxial_part;
+using model::network::upper_bounds;
+using model::network::validate;
+using model::network::write_parameters_json;
 
 /// The grain modulus E of the DEM (architecture.md), the normalisation of Lambda [Pa].
 inline constexpr double kDemYoungsModulus = 150e6;

@@ -2,7 +2,7 @@
 // drained triaxial compression run by calibration's material-point driver, by one Q1 hexahedron
 // and by a small mesh, the comparison of those curves, and their comparison with a DEM curve.
 //
-// This header includes no deal.II header (only Eigen and calibration/acst_model.h), so light
+// This header includes no deal.II header (only Eigen and model/acst_model.h), so light
 // translation units such as the `sffcal fe-check` command can use fe_model without deal.II's
 // compile cost; link `fe_model_acst`. deal.II programs can use fe_model/triaxial.h and
 // fe_model/acst_material.h directly.
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 
 namespace fe_model {
 
@@ -39,7 +39,7 @@ struct AcstLoading {
   /// function of the strain increment and Newton, global or at the material point, converges to
   /// round-off (with error control, a Newton iterate that changes a substep choice moves the
   /// stress by the local error, and the 1e-8 comparisons would stall there).
-  calibration::IntegrationOptions integration;
+  model::acst::IntegrationOptions integration;
 };
 
 /// The FE problem of fe_model/triaxial.h (one eighth of a box specimen, z axial).
@@ -87,15 +87,15 @@ struct Curve {
   double wall_seconds = 0.0;
 };
 
-/// calibration::drained_triaxial from calibration::isotropic_state, with the loading's integration
+/// model::acst::drained_triaxial from model::acst::isotropic_state, with the loading's integration
 /// options and a Newton tolerance of 1e-9 p on the lateral stresses.
-Curve run_acst_driver_triaxial(const calibration::Parameters<double>& parameters,
+Curve run_acst_driver_triaxial(const model::acst::Parameters<double>& parameters,
                                const AcstSpecimen& specimen, const AcstLoading& loading);
 
 /// fe_model::run_triaxial with an AcstMaterial at every quadrature point. Never throws for a
 /// model or Newton failure (completed = false and a message); throws std::invalid_argument for
 /// bad options and std::runtime_error for an unwritable VTU file.
-Curve run_acst_fe_triaxial(const calibration::Parameters<double>& parameters,
+Curve run_acst_fe_triaxial(const model::acst::Parameters<double>& parameters,
                            const AcstSpecimen& specimen, const AcstLoading& loading,
                            const AcstMeshOptions& mesh);
 
@@ -139,7 +139,7 @@ inline constexpr double kDefaultAcs = 0.827;
 
 /// a_cs from a parameter file, if it has one: a top-level key "a_cs" or "parameters.a_cs", either a
 /// number or an object with a numeric "value". The model parameters themselves are read with
-/// calibration::read_parameters_json only. Throws std::runtime_error for an unreadable file or a
+/// model::acst::read_parameters_json only. Throws std::runtime_error for an unreadable file or a
 /// non-positive value.
 std::optional<double> read_fabric_normalisation(const std::string& parameter_path);
 

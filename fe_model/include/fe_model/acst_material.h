@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 #include "fe_model/material.h"
 
 namespace fe_model {
@@ -29,9 +29,9 @@ class AcstMaterial final : public Material {
  public:
   static constexpr std::size_t kNumInternalVariables = 28;
 
-  AcstMaterial(const calibration::Parameters<double>& parameters,
+  AcstMaterial(const model::acst::Parameters<double>& parameters,
                const AcstInitialState& initial_state,
-               const calibration::IntegrationOptions& options = {});
+               const model::acst::IntegrationOptions& options = {});
 
   std::string name() const override { return "acst"; }
   /// alpha_0 = alpha_in_0 = s/p of the initial stress (zero for an isotropic state).
@@ -44,14 +44,14 @@ class AcstMaterial final : public Material {
   std::optional<double> fabric_invariant(const PointState& state) const override;
 
   /// Conversions between the two conventions (exposed for tests).
-  static calibration::State<double> to_model(const PointState& state);
-  static void from_model(const calibration::State<double>& model, const SymmetricTensor2& strain,
+  static model::acst::State<double> to_model(const PointState& state);
+  static void from_model(const model::acst::State<double>& model, const SymmetricTensor2& strain,
                          PointState& state);
 
  private:
-  calibration::Parameters<double> parameters_;
+  model::acst::Parameters<double> parameters_;
   AcstInitialState initial_;
-  calibration::IntegrationOptions options_;
+  model::acst::IntegrationOptions options_;
 };
 
 }  // namespace fe_model

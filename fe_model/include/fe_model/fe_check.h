@@ -23,7 +23,7 @@ struct FeCheckOptions {
   double max_strain = 0.3;   ///< final axial strain
   unsigned int steps = 100;  ///< equal axial strain increments
   std::string output_folder = "fe_check";
-  /// Local error tolerance of the model's implicit substepping (calibration::IntegrationOptions),
+  /// Local error tolerance of the model's implicit substepping (model::acst::IntegrationOptions),
   /// the same for the driver and the FE runs; 0 (the FE default): one second-order step per
   /// increment, a smooth update, so both Newton iterations converge to round-off (docs/fe.md).
   double integration_tolerance = 0.0;

@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "calibration/network_model.h"
+#include "model/network_model.h"
 #include "fe_model/material.h"
 
 namespace fe_model {
@@ -37,7 +37,7 @@ class NetworkMaterial final : public Material {
   /// Throws std::invalid_argument naming a parameter outside its range or a non-physical initial
   /// state (void ratio or coordination not positive, a tensor not finite). youngs_modulus: the
   /// grains' E [Pa] that normalises Lambda (150 MPa in the DEM).
-  NetworkMaterial(const calibration::network::Parameters<double>& parameters,
+  NetworkMaterial(const model::network::Parameters<double>& parameters,
                   const NetworkInitialState& initial_state, double youngs_modulus);
 
   std::string name() const override { return "contact_network"; }
@@ -50,12 +50,12 @@ class NetworkMaterial final : public Material {
   /// t(A) = A_zz - (A_xx + A_yy)/2, the DEM's triaxial fabric anisotropy a_c.
   std::optional<double> fabric_invariant(const PointState& state) const override;
 
-  static calibration::network::State<double> to_model(const PointState& state);
-  void from_model(const calibration::network::State<double>& model,
+  static model::network::State<double> to_model(const PointState& state);
+  void from_model(const model::network::State<double>& model,
                   const SymmetricTensor2& strain, PointState& state) const;
 
  private:
-  calibration::network::Parameters<double> parameters_;
+  model::network::Parameters<double> parameters_;
   NetworkInitialState initial_;
   double youngs_modulus_;
 };

@@ -1,10 +1,10 @@
-#include "calibration/material_point.h"
+#include "model/material_point.h"
 
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
-namespace calibration {
+namespace model::acst {
 
 std::vector<PathStep> parse_path_table(const std::string& text) {
   std::vector<PathStep> steps;
@@ -47,4 +47,4 @@ std::vector<PathStep> parse_path_table(const std::string& text) {
   return steps;
 }
 
-}  // namespace calibration
+}  // namespace model::acst

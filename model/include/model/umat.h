@@ -1,7 +1,7 @@
 /* The ACST model of sffcal behind the Abaqus/Standard UMAT calling convention (docs/fe.md, "The
  * UMAT entry"). C linkage, every argument by pointer as Fortran passes it, CMNAME's length last.
  * libsffcal_umat.so's umat_ calls this entry for every material whose name does not begin with
- * CONTACT_NETWORK (those go to the contact-network entry, calibration/umat_network.h).
+ * CONTACT_NETWORK (those go to the contact-network entry, model/umat_network.h).
  *
  * Conventions of the UMAT interface: tension positive; engineering shear strains (gamma = 2 eps);
  * component order 11, 22, 33, 12, 13, 23 (NDI = 3, NSHR = 3, NTENS = 6), or 11, 22, 33, 12 for

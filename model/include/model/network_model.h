@@ -21,9 +21,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "calibration/network_tensor.h"
+#include "model/network_tensor.h"
 
-namespace calibration::network {
+namespace model::network {
 
 /// The reference normal force of the critical coordination line (Eq. N4): Lambda_ref = 1e-3, the
 /// order of Lambda at 100-300 kPa in the DEM (docs/sff-results.md).
@@ -383,4 +383,4 @@ int substeps_for(const Parameters<double>& par, const State<double, M>& at, doub
   return !(n < 1e6) ? 1000000 : n < 1.0 ? 1 : static_cast<int>(n);
 }
 
-}  // namespace calibration::network
+}  // namespace model::network

@@ -9,16 +9,16 @@
 #include <string>
 #include <utility>
 
-#include "calibration/acst_model.h"
-#include "calibration/network_model.h"
+#include "model/acst_model.h"
+#include "model/network_model.h"
 
-namespace calibration {
+namespace model {
 
 namespace {
 
 using Json = nlohmann::json;
 
-constexpr const auto& kFields = kParameterFields<double>;
+constexpr const auto& kFields = acst::kParameterFields<double>;
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw std::runtime_error("parameter file '" + path + "': " + what);
@@ -54,7 +54,16 @@ void merge_extra(Json& root, const std::string& extra_json_object, const std::st
   }
 }
 
+void write_json(const Json& root, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) fail(path, "cannot be written");
+  out << root.dump(2) << '\n';
+  if (!out) fail(path, "write failed");
+}
+
 }  // namespace
+
+namespace acst {
 
 std::string parameter_file_model(const std::string& path) {
   const Json root = read_json(path);
@@ -116,13 +125,6 @@ Json parameters_object(const Parameters<double>& par) {
   return root;
 }
 
-void write_json(const Json& root, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) fail(path, "cannot be written");
-  out << root.dump(2) << '\n';
-  if (!out) fail(path, "write failed");
-}
-
 }  // namespace
 
 void write_parameters_json(const Parameters<double>& par, const std::string& path) {
@@ -147,6 +149,8 @@ void write_parameters_json(const Parameters<double>& par, const std::string& pat
   merge_extra(root, extra_json_object, path);
   write_json(root, path);
 }
+
+}  // namespace acst
 
 namespace network {
 
@@ -205,4 +209,4 @@ void write_parameters_json(const Parameters<double>& par, double youngs_modulus,
 
 }  // namespace network
 
-}  // namespace calibration
+}  // namespace model

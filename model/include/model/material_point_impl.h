@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace calibration {
+namespace model::acst {
 
 template <typename T>
 State<T> isotropic_state(const T& p, const T& void_ratio, const Tensor<T>& fabric) {
@@ -395,4 +395,4 @@ PathResult<T> general_path(const Parameters<T>& par, const State<T>& initial,
   return detail::run_path(par, initial, static_cast<int>(steps.size()), step, options);
 }
 
-}  // namespace calibration
+}  // namespace model::acst

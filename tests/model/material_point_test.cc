@@ -1,5 +1,5 @@
 // Physics checks of the model through the material-point driver.
-#include "calibration/material_point.h"
+#include "model/material_point.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 #include "toyoura.h"
 
-namespace calibration {
+namespace model::acst {
 namespace {
 
 using testing::toyoura;
@@ -347,4 +347,4 @@ TEST(DrainedTriaxialJet, CurvesDifferentiateWithRespectToParameters) {
 }
 
 }  // namespace
-}  // namespace calibration
+}  // namespace model::acst

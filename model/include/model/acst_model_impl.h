@@ -8,7 +8,7 @@
 #include <cmath>
 #include <type_traits>
 
-namespace calibration {
+namespace model::acst {
 
 /// sqrt(2/3): the radius of the critical and bounding cones per unit m (docs/model.md), and the
 /// factor from a triaxial scalar t(X) to X : n_c of an axisymmetric deviator (the fabric's).
@@ -642,4 +642,4 @@ UpdateStatus update_state_explicit(const Parameters<T>& par, const State<T>& sta
   return unreliable ? UpdateStatus::kUnreliable : UpdateStatus::kOk;
 }
 
-}  // namespace calibration
+}  // namespace model::acst

@@ -1,4 +1,4 @@
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 
 #include <ceres/jet.h>
 
@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "calibration/strain_derivatives.h"
+#include "model/strain_derivatives.h"
 
-namespace calibration {
+namespace model::acst {
 
 namespace {
 
@@ -131,4 +131,4 @@ void validate_parameters(const Parameters<double>& par) {
   if (!(par.c_h * par.e_gamma < 1.0)) fail("c_h", par.c_h, ">= 0 with c_h e_gamma < 1");
 }
 
-}  // namespace calibration
+}  // namespace model::acst

@@ -1,10 +1,10 @@
 // The UMAT entry under the name Abaqus/Standard calls on Linux (umat_, the Fortran convention),
 // for the shared library sffcal_umat. It only forwards, by the material's name, to
-// sffcal_umat_network (a name beginning with CONTACT_NETWORK, calibration/umat_network.h) or
-// sffcal_umat (ACST, calibration/umat.h): kept out of the model library so that linking
+// sffcal_umat_network (a name beginning with CONTACT_NETWORK, model/umat_network.h) or
+// sffcal_umat (ACST, model/umat.h): kept out of the model library so that linking
 // sffcal::model never defines a umat_ of its own.
-#include "calibration/umat.h"
-#include "calibration/umat_network.h"
+#include "model/umat.h"
+#include "model/umat_network.h"
 
 extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* sse, double* spd,
                       double* scd, double* rpl, double* ddsddt, double* drplde, double* drpldt,

@@ -10,7 +10,7 @@
 // (derivatives w.r.t. the parameters: one residual evaluation in the Jet type and one solve with
 // the factorised Jacobian per plastic step, instead of Jets through every Newton iteration), and
 // with hand-written sensitivities for the consistent tangent (update_with_tangent).
-// Include calibration/acst_model.h, not this file.
+// Include model/acst_model.h, not this file.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,7 +19,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace calibration {
+namespace model::acst {
 namespace implicit_detail {
 
 /// Unknowns of a backward-Euler step: stress [Pa] and alpha (each 6 components, Voigt order xx,
@@ -459,4 +459,4 @@ UpdateStatus update_state_implicit(const Parameters<T>& par, const State<T>& sta
   }
 }
 
-}  // namespace calibration
+}  // namespace model::acst

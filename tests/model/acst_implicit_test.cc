@@ -2,7 +2,7 @@
 // automatic differentiation, its elastic closed form against the explicit reference, its tangent
 // against finite differences and against the Jet replay, its parameter derivatives against finite
 // differences after the peak, and its driver paths against the converged explicit reference.
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "calibration/material_point.h"
+#include "model/material_point.h"
 #include "toyoura.h"
 
-namespace calibration {
+namespace model::acst {
 namespace {
 
 using implicit_detail::Jacobian;
@@ -374,4 +374,4 @@ TEST(AcstImplicit, DriverPathsAgreeWithTheConvergedExplicitReference) {
 }
 
 }  // namespace
-}  // namespace calibration
+}  // namespace model::acst

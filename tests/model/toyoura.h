@@ -6,13 +6,13 @@
 #include <cstdio>
 #include <string>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 
-namespace calibration::testing {
+namespace model::testing {
 
 template <typename T = double>
-Parameters<T> toyoura() {
-  return Parameters<T>{T(125.0), T(0.05),  T(1.25), T(0.712), T(0.934), T(0.019), T(0.7), T(0.01),
+acst::Parameters<T> toyoura() {
+  return acst::Parameters<T>{T(125.0), T(0.05),  T(1.25), T(0.712), T(0.934), T(0.019), T(0.7), T(0.01),
                        T(7.05),  T(0.968), T(1.1),  T(0.704), T(3.5),   T(0.1),   T(5.0),
                        T(0.0),   T(0.5),  T(0.0)};
 }
@@ -27,4 +27,4 @@ inline std::string scientific(double x) {
   return buffer;
 }
 
-}  // namespace calibration::testing
+}  // namespace model::testing

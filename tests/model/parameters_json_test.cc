@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 #include "toyoura.h"
 
-namespace calibration {
+namespace model::acst {
 namespace {
 
 using testing::toyoura;
@@ -245,4 +245,4 @@ TEST(ParameterTable, AParameterLeftUnsetIsNamed) {
 }
 
 }  // namespace
-}  // namespace calibration
+}  // namespace model::acst

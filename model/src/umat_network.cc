@@ -1,22 +1,22 @@
-// The Abaqus UMAT entry of the contact-network model (calibration/umat_network.h): the state in
+// The Abaqus UMAT entry of the contact-network model (model/umat_network.h): the state in
 // STATEV, E and the parameters from PROPS or a file, the update and its exact tangent from
 // network_update.h, and the step cut through PNEWDT.
-#include "calibration/umat_network.h"
+#include "model/umat_network.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <string>
 
-#include "calibration/network_update.h"
+#include "model/network_update.h"
 #include "umat_common.h"
 
 namespace {
 
-namespace net = calibration::network;
-using calibration::umat_detail::from_abaqus;
-using calibration::umat_detail::report;
-using calibration::umat_detail::to_abaqus;
+namespace net = model::network;
+using model::umat_detail::from_abaqus;
+using model::umat_detail::report;
+using model::umat_detail::to_abaqus;
 
 struct Material {
   net::Parameters<double> parameters;
@@ -25,7 +25,7 @@ struct Material {
 
 Material material_from_props(const double* props, int nprops) {
   if (nprops == SFFCAL_UMAT_NETWORK_NPROPS_STATE) {
-    return calibration::umat_detail::read_file_once<Material>(
+    return model::umat_detail::read_file_once<Material>(
         "SFFCAL_NETWORK_PARAMETERS",
         "NPROPS = 20 and no parameter file: set SFFCAL_NETWORK_PARAMETERS to the contact-network "
         "parameter file (JSON), or give E and the 18 parameters in PROPS(21..39)",
@@ -143,10 +143,10 @@ void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double*
                          const double* /*dfgrd1*/, const int* noel, const int* npt,
                          const int* /*layer*/, const int* /*kspt*/, const int* /*kstep*/,
                          const int* /*kinc*/, size_t /*cmname_length*/) {
-  calibration::umat_detail::last_message().clear();
+  model::umat_detail::last_message().clear();
   const int n = *ntens;
   try {
-    calibration::umat_detail::check_layout(*ndi, *nshr, n, *nstatv, SFFCAL_UMAT_NETWORK_NSTATV);
+    model::umat_detail::check_layout(*ndi, *nshr, n, *nstatv, SFFCAL_UMAT_NETWORK_NSTATV);
     if (*nprops < SFFCAL_UMAT_NETWORK_NPROPS_STATE)
       throw std::runtime_error("NPROPS = " + std::to_string(*nprops) +
                                ": PROPS(1..20) must give e_0, Z_0, A_0, F_0 and F^t_0");
@@ -165,7 +165,7 @@ void sffcal_umat_network(double* stress, double* statev, double* ddsdde, double*
       return;
     }
     to_abaqus(net::stress(update.end, material.youngs_modulus), stress, n, -1.0);
-    calibration::umat_detail::to_ddsdde(update.tangent, ddsdde, n);
+    model::umat_detail::to_ddsdde(update.tangent, ddsdde, n);
     statev[SFFCAL_UMAT_NETWORK_STATE_INITIALISED] = 1.0;
     state_to_statev(update.end, statev);
     statev[SFFCAL_UMAT_NETWORK_STATE_SUBSTEPS] = static_cast<double>(update.substeps);

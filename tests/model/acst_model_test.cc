@@ -1,5 +1,5 @@
 // Unit checks of the ACST model and its integrator (acst-model.md, "Unit checks").
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 
 #include <gtest/gtest.h>
 
@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <string>
 
-#include "calibration/material_point.h"
+#include "model/material_point.h"
 #include "toyoura.h"
 
-namespace calibration {
+namespace model::acst {
 namespace {
 
 using testing::toyoura;
@@ -351,4 +351,4 @@ TEST(AcstIntegration, HugeIncrementFailsCleanlyOrIsRight) {
 }
 
 }  // namespace
-}  // namespace calibration
+}  // namespace model::acst

@@ -12,10 +12,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "calibration/acst_model.h"
-#include "calibration/strain_derivatives.h"
+#include "model/acst_model.h"
+#include "model/strain_derivatives.h"
 
-namespace calibration {
+namespace model::acst {
 
 /// Voigt order of the independent components: xx, yy, zz, xy, yz, xz (tensor shear components).
 inline constexpr int kVoigtI[6] = {0, 1, 2, 0, 1, 0};
@@ -130,6 +130,6 @@ PathResult<T> general_path(const Parameters<T>& par, const State<T>& initial,
 /// std::runtime_error naming the line.
 std::vector<PathStep> parse_path_table(const std::string& text);
 
-}  // namespace calibration
+}  // namespace model::acst
 
-#include "calibration/material_point_impl.h"
+#include "model/material_point_impl.h"

@@ -5,9 +5,9 @@
 
 #include <ceres/jet.h>
 
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 
-namespace calibration {
+namespace model::acst {
 
 /// Jet seeded on the 6 independent strain components (Voigt xx, yy, zz, xy, yz, xz; each shear
 /// seed moves eps_ij and eps_ji together).
@@ -21,4 +21,4 @@ UpdateStatus update_with_strain_derivatives(const Parameters<double>& par,
                                             State<StrainJet>& end,
                                             const IntegrationOptions& options = {});
 
-}  // namespace calibration
+}  // namespace model::acst

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "calibration/umat.h"
+#include "model/umat.h"
 
-namespace calibration::umat_detail {
+namespace model::umat_detail {
 
 Eigen::Matrix3d from_abaqus(const double* v, int n, double sign, double shear_scale) {
   Eigen::Matrix3d t = Eigen::Matrix3d::Zero();
@@ -51,8 +51,8 @@ void report(const std::string& message, const int* noel, const int* npt, double*
   if (pnewdt) *pnewdt = std::min(*pnewdt, 0.5);
 }
 
-}  // namespace calibration::umat_detail
+}  // namespace model::umat_detail
 
 extern "C" const char* sffcal_umat_last_message(void) {
-  return calibration::umat_detail::last_message().c_str();
+  return model::umat_detail::last_message().c_str();
 }

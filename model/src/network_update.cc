@@ -1,5 +1,5 @@
-// The contact-network update with its exact tangent (calibration/network_update.h).
-#include "calibration/network_update.h"
+// The contact-network update with its exact tangent (model/network_update.h).
+#include "model/network_update.h"
 
 #include <ceres/jet.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace calibration::network {
+namespace model::network {
 namespace {
 
 // The six independent strain components seeded in the dual numbers.
@@ -80,4 +80,4 @@ UpdateResult update_with_tangent(const Parameters<double>& par, const State<doub
   return result;
 }
 
-}  // namespace calibration::network
+}  // namespace model::network

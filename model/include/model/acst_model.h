@@ -21,7 +21,7 @@
 #include <utility>
 #include <vector>
 
-namespace calibration {
+namespace model::acst {
 
 /// p_a, the reference pressure of the model [Pa].
 inline constexpr double kAtmosphericPressure = 101325.0;
@@ -223,7 +223,7 @@ bool is_admissible_void_ratio(double e);
 /// naming the missing/invalid key.
 Parameters<double> read_parameters_json(const std::string& path);
 /// The material a parameter file is for: its key "model", "acst" where absent (files of the first
-/// versions), e.g. "contact_network" (calibration/network_model.h). Throws std::runtime_error
+/// versions), e.g. "contact_network" (model/network_model.h). Throws std::runtime_error
 /// naming the file if it cannot be read or is not a JSON object.
 std::string parameter_file_model(const std::string& path);
 /// Writes the layout read_parameters_json reads (each parameter with value and unit).
@@ -276,12 +276,12 @@ struct ModelQuantities {
 template <typename T>
 bool evaluate_model(const Parameters<T>& par, const State<T>& state, ModelQuantities<T>& q);
 
-}  // namespace calibration
+}  // namespace model::acst
 
-#include "calibration/acst_model_impl.h"
-#include "calibration/acst_implicit.h"
+#include "model/acst_model_impl.h"
+#include "model/acst_implicit.h"
 
-namespace calibration {
+namespace model::acst {
 
 template <typename T>
 UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
@@ -292,4 +292,4 @@ UpdateStatus update_state(const Parameters<T>& par, const State<T>& start,
              : update_state_explicit(par, start, strain_increment, end, options, substeps);
 }
 
-}  // namespace calibration
+}  // namespace model::acst

@@ -1,4 +1,4 @@
-// What the two UMAT entries (calibration/umat.h: ACST and the contact-network model) share: the
+// What the two UMAT entries (model/umat.h: ACST and the contact-network model) share: the
 // conversions between the UMAT's component order and 3x3 tensors, the check of the element
 // layout, and the report of a failed update through PNEWDT and sffcal_umat_last_message().
 #ifndef SFFCAL_CALIBRATION_UMAT_COMMON_H_
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace calibration::umat_detail {
+namespace model::umat_detail {
 
 // Abaqus order 11, 22, 33, 12, 13, 23.
 inline constexpr int kRow[6] = {0, 1, 2, 0, 0, 1};
@@ -64,6 +64,6 @@ Value read_file_once(const char* variable, const char* unset_message, Read read)
   return cached;
 }
 
-}  // namespace calibration::umat_detail
+}  // namespace model::umat_detail
 
 #endif  // SFFCAL_CALIBRATION_UMAT_COMMON_H_

@@ -1,6 +1,6 @@
-/* The contact-network model of sffcal (calibration/network_model.h, docs/network-model.md) behind
+/* The contact-network model of sffcal (model/network_model.h, docs/network-model.md) behind
  * the Abaqus/Standard UMAT calling convention (docs/fe.md, "The UMAT entry"). Conventions as for
- * the ACST entry (calibration/umat.h): tension positive, engineering shear strains, component
+ * the ACST entry (model/umat.h): tension positive, engineering shear strains, component
  * order 11, 22, 33, 12, 13, 23 (NTENS = 6) or 11, 22, 33, 12 (NTENS = 4), stresses in Pa.
  * libsffcal_umat.so's umat_ calls this entry for a material whose name (CMNAME) begins with
  * CONTACT_NETWORK (in any case), sffcal_umat (ACST) for any other.

@@ -13,7 +13,7 @@
 #include <array>
 #include <cmath>
 
-namespace calibration::network {
+namespace model::network {
 
 template <typename T>
 using Tensor = Eigen::Matrix<T, 3, 3>;
@@ -134,4 +134,4 @@ inline bool all_finite(const DiagonalTensor<double>& x) {
   return std::isfinite(x.d[0]) && std::isfinite(x.d[1]) && std::isfinite(x.d[2]);
 }
 
-}  // namespace calibration::network
+}  // namespace model::network

@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include "calibration/acst_model.h"
-#include "calibration/material_point.h"
+#include "model/acst_model.h"
+#include "model/material_point.h"
 #include "toyoura.h"
 
-namespace calibration {
+namespace model::acst {
 namespace {
 
 using testing::toyoura;
@@ -121,4 +121,4 @@ TEST(ModelStress, ApexShearInEveryDirectionAndItsTangentAreFinite) {
 }
 
 }  // namespace
-}  // namespace calibration
+}  // namespace model::acst

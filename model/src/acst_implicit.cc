@@ -1,13 +1,13 @@
 // The implicit integration of the ACST model (acst_implicit.h, docs/model.md §4): the Newton
 // solution of the backward-Euler step with its analytic Jacobian, the values run with its tape,
 // and the consistent tangent by sensitivities along the tape.
-#include "calibration/acst_model.h"
+#include "model/acst_model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-namespace calibration {
+namespace model::acst {
 namespace implicit_detail {
 
 namespace {
@@ -814,4 +814,4 @@ bool replay_tangent(const Parameters<double>& par, const State<double>& start,
 }
 
 }  // namespace implicit_detail
-}  // namespace calibration
+}  // namespace model::acst

@@ -1,7 +1,7 @@
 // The contact-network model's stress update with its exact consistent tangent (network_model.h,
 // docs/network-model.md): RK4 substeps of the strain increment in forward-mode dual numbers seeded
 // on its six independent components. Shared by the FE adapter (fe_model::NetworkMaterial) and the
-// UMAT entry (calibration/umat.h), so both give the same numbers. Needs only Eigen.
+// UMAT entry (model/umat.h), so both give the same numbers. Needs only Eigen.
 //
 // Conventions: compression positive, stress in Pa, tensor shear components.
 #pragma once
@@ -11,9 +11,9 @@
 #include <cmath>
 #include <string>
 
-#include "calibration/network_model.h"
+#include "model/network_model.h"
 
-namespace calibration::network {
+namespace model::network {
 
 /// An increment needing more RK4 substeps than this fails, so that the caller cuts it.
 inline constexpr int kMaxUpdateSubsteps = 10000;
@@ -52,4 +52,4 @@ bool admissible(const State<double, M>& s) {
 /// 1 + (3 * 2/105 + 8/105) tr(FA).
 double lambda_for_mean_stress(const State<double>& network, double p, double youngs_modulus);
 
-}  // namespace calibration::network
+}  // namespace model::network
