@@ -8,6 +8,10 @@ include(CMakePackageConfigHelpers)
 set(sffcal_install_targets sffcal_model sffcal_umat)
 install(FILES
   model/include/model/acst_model.h
+  model/include/model/parameter_field.h
+  model/include/model/update_status.h
+  model/include/model/parameter_file.h
+  model/include/model/descriptor.h
   model/include/model/acst_model_impl.h
   model/include/model/acst_implicit.h
   model/include/model/umat.h

@@ -12,7 +12,8 @@ nm -D --defined-only "$prefix/lib/libsffcal_umat.so" | grep -qw umat_ ||
   { echo "test_install: $prefix/lib/libsffcal_umat.so does not export umat_" >&2; exit 1; }
 # The model's public headers stand alone with Eigen only (docs/fe.md, "Install"): each compiles
 # by itself against the installed tree, so a header the install leaves out is found here.
-for header in acst_model.h umat.h umat_network.h network_model.h network_update.h; do
+for header in acst_model.h descriptor.h parameter_field.h parameter_file.h update_status.h umat.h \
+  umat_network.h network_model.h network_update.h; do
   echo "#include \"model/$header\"" |
     "${CXX:-c++}" -std=c++17 -fsyntax-only -I"$prefix/include" -I/usr/include/eigen3 -x c++ - ||
     { echo "test_install: the installed model/$header does not compile alone" >&2; exit 1; }

@@ -1,4 +1,4 @@
-// Linear elasticity, status helpers and the Newton log's ratios: the parts of fe_model that need
+// Linear elasticity and the Newton log's ratios: the parts of fe_model that need
 // only deal.II's tensor headers.
 #include "fe_model/material.h"
 
@@ -9,22 +9,6 @@
 #include "fe_model/solver_options.h"
 
 namespace fe_model {
-
-const char* to_string(MaterialStatus status) {
-  switch (status) {
-    case MaterialStatus::kOk:
-      return "ok";
-    case MaterialStatus::kUnreliable:
-      return "unreliable";
-    case MaterialStatus::kFailed:
-      return "failed";
-  }
-  return "unknown";
-}
-
-MaterialStatus worst(MaterialStatus a, MaterialStatus b) {
-  return static_cast<int>(a) > static_cast<int>(b) ? a : b;
-}
 
 LinearElasticMaterial::LinearElasticMaterial(double youngs_modulus, double poissons_ratio)
     : youngs_modulus_(youngs_modulus), poissons_ratio_(poissons_ratio) {

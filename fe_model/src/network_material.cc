@@ -84,8 +84,8 @@ MaterialUpdate NetworkMaterial::update(const PointState& start,
   const net::UpdateResult update =
       net::update_with_tangent(parameters_, to_model(start), increment, youngs_modulus_);
   MaterialUpdate result;
-  if (!update.ok) {
-    result.status = MaterialStatus::kFailed;
+  result.status = update.status;
+  if (update.status == MaterialStatus::kFailed) {
     result.message = update.message;
     end = start;  // never hand NaN to the caller
     return result;

@@ -90,30 +90,7 @@ UpdateStatus update_with_tangent(const Parameters<double>& par, const State<doub
   return status;
 }
 
-const char* to_string(UpdateStatus status) {
-  switch (status) {
-    case UpdateStatus::kOk:
-      return "ok";
-    case UpdateStatus::kUnreliable:
-      return "unreliable";
-    case UpdateStatus::kFailed:
-      return "failed";
-  }
-  return "unknown";
-}
-
 bool is_admissible_void_ratio(double e) { return e > 0.0 && e < detail::kElasticVoidLimit; }
-
-std::string ParameterRange::describe() const {
-  auto number = [](double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return std::string(text);
-  };
-  if (high == detail::kUnbounded) return (low_closed ? ">= " : "> ") + number(low);
-  return std::string("in ") + (low_closed ? "[" : "(") + number(low) + ", " + number(high) +
-         (high_closed ? "]" : ")");
-}
 
 void validate_parameters(const Parameters<double>& par) {
   auto fail = [](const char* name, double value, const std::string& range) {

@@ -76,7 +76,7 @@ UpdateResult update_with_tangent(const Parameters<double>& par, const State<doub
         result.tangent(3 * i + j, 3 * kJ[a] + kI[a]) = component;
       }
   result.end = end;
-  result.ok = true;
+  result.status = UpdateStatus::kOk;
   return result;
 }
 

@@ -1,8 +1,13 @@
-// The parameter files of the two materials: the ACST model's (docs/model.md, "Parameter file"):
+// The parameter file of every registered model (parameter_file.h), laid out from its tables, and
+// the typed readers and writers of the two fitted models over it: the ACST model's (docs/model.md,
+// "Parameter file"):
 //   {"model": "acst", "reference_pressure": {"value": 101325, "unit": "Pa"},
 //    "parameters": {"G0": {"value": 125, "unit": "1"}, ...}}
-// and the contact-network model's (namespace network below).
+// and the contact-network model's (docs/network-model.md, "Parameter file"):
+//   {"model": "contact_network", "youngs_modulus": {"value": 1.5e8, "unit": "Pa"},
+//    "parameters": {"kappa": {"value": 133.5, "unit": "1"}, ...}, ...}
 #include <array>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -10,15 +15,15 @@
 #include <utility>
 
 #include "model/acst_model.h"
+#include "model/descriptor.h"
 #include "model/network_model.h"
+#include "model/parameter_file.h"
 
 namespace model {
 
 namespace {
 
 using Json = nlohmann::json;
-
-constexpr const auto& kFields = acst::kParameterFields<double>;
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw std::runtime_error("parameter file '" + path + "': " + what);
@@ -61,9 +66,36 @@ void write_json(const Json& root, const std::string& path) {
   if (!out) fail(path, "write failed");
 }
 
-}  // namespace
+// A number as the messages write it (%g).
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
 
-namespace acst {
+// {"value": x, "unit": info.unit} under `key` of `object`; absent: its value_if_absent, or an
+// error naming key_path if it has none.
+double read_value(const Json& object, const std::string& key, const std::string& key_path,
+                  const ParameterInfo& info, const std::string& path) {
+  if (!object.contains(key)) {
+    if (info.required()) fail(path, "missing key '" + key_path + "'");
+    return info.value_if_absent;  // a file older than the parameter
+  }
+  const Json& entry = object[key];
+  if (!entry.is_object() || !entry.contains("value"))
+    fail(path, "missing key '" + key_path + ".value'");
+  if (!entry["value"].is_number()) fail(path, "key '" + key_path + ".value' must be a number");
+  if (!entry.contains("unit")) fail(path, "missing key '" + key_path + ".unit'");
+  if (!entry["unit"].is_string() || entry["unit"].get<std::string>() != info.unit)
+    fail(path, "key '" + key_path + ".unit' must be \"" + info.unit + "\"");
+  const double x = entry["value"].get<double>();
+  if (info.fixed() && x != info.physical.low)
+    fail(path, "key '" + key_path + "' must be {\"value\": " + number(info.physical.low) +
+                   ", \"unit\": \"" + info.unit + "\"} (fixed)");
+  return x;
+}
+
+}  // namespace
 
 std::string parameter_file_model(const std::string& path) {
   const Json root = read_json(path);
@@ -72,69 +104,52 @@ std::string parameter_file_model(const std::string& path) {
   return root["model"].get<std::string>();
 }
 
-Parameters<double> read_parameters_json(const std::string& path) {
+ParameterValues read_parameter_file(const std::string& path, const std::string& expected_model) {
   const Json root = read_json(path);
-  if (root.contains("model") && root["model"] != "acst")
-    fail(path, "key 'model' must be \"acst\"");
-  if (root.contains("reference_pressure")) {
-    const Json& pa = root["reference_pressure"];
-    if (!pa.is_object() || !pa.contains("value") || !pa["value"].is_number() ||
-        pa.value("unit", "") != "Pa" || pa["value"].get<double>() != kAtmosphericPressure)
-      fail(path, "key 'reference_pressure' must be {\"value\": 101325, \"unit\": \"Pa\"} (fixed p_a)");
+  std::string name = "acst";  // files of the first versions name no model
+  if (root.contains("model")) {
+    if (!root["model"].is_string()) fail(path, "key 'model' must be a string");
+    name = root["model"].get<std::string>();
   }
-  if (!root.contains("parameters") || !root["parameters"].is_object())
-    fail(path, "missing key 'parameters' (an object)");
-  const Json& params = root["parameters"];
-  Parameters<double> par{};
-  for (const ParameterField<double>& field : kFields) {
-    const char* name = field.name;
-    const std::string key = std::string("parameters.") + name;
-    if (!params.contains(name)) {
-      if (field.required()) fail(path, "missing key '" + key + "'");
-      par.*field.member = field.value_if_absent;  // a file older than the parameter
-      continue;
-    }
-    const Json& entry = params[name];
-    if (!entry.is_object() || !entry.contains("value"))
-      fail(path, "missing key '" + key + ".value'");
-    if (!entry["value"].is_number()) fail(path, "key '" + key + ".value' must be a number");
-    if (!entry.contains("unit")) fail(path, "missing key '" + key + ".unit'");
-    if (!entry["unit"].is_string() || entry["unit"].get<std::string>() != field.unit)
-      fail(path, "key '" + key + ".unit' must be \"" + field.unit + "\"");
-    par.*field.member = entry["value"].get<double>();
-  }
+  if (!expected_model.empty() && name != expected_model)
+    fail(path, "key 'model' must be \"" + expected_model + "\"");
+  const ModelDescription* description = nullptr;
   try {
-    validate_parameters(par);
-  } catch (const std::runtime_error& e) {
+    description = &find_model(name);
+  } catch (const std::invalid_argument& e) {
     fail(path, e.what());
   }
-  return par;
+  ParameterValues values{name, {}, {}};
+  for (const ParameterInfo& c : description->constants())
+    values.constants.push_back(read_value(root, c.name, c.name, c, path));
+  if (!root.contains("parameters") || !root["parameters"].is_object())
+    fail(path, "missing key 'parameters' (an object)");
+  for (const ParameterInfo& p : description->parameters())
+    values.parameters.push_back(
+        read_value(root["parameters"], p.name, std::string("parameters.") + p.name, p, path));
+  try {
+    description->validate(values.constants, values.parameters);
+  } catch (const std::invalid_argument& e) {
+    fail(path, e.what());
+  }
+  return values;
 }
 
-namespace {
-
-Json parameters_object(const Parameters<double>& par) {
-  validate_parameters(par);
+void write_parameter_file(const std::string& path, const ParameterValues& values,
+                          const std::vector<ParameterAnnotation>& annotations,
+                          const std::string& extra_json_object) {
+  const ModelDescription& description = find_model(values.model);
+  description.validate(values.constants, values.parameters);
   Json root;
-  root["model"] = "acst";
-  root["reference_pressure"] = {{"value", kAtmosphericPressure}, {"unit", "Pa"}};
+  root["model"] = values.model;
+  for (std::size_t i = 0; i < values.constants.size(); ++i)
+    root[description.constants()[i].name] = {{"value", values.constants[i]},
+                                             {"unit", description.constants()[i].unit}};
   Json params = Json::object();
-  for (const ParameterField<double>& field : kFields)
-    params[field.name] = {{"value", par.*field.member}, {"unit", field.unit}};
+  for (std::size_t i = 0; i < values.parameters.size(); ++i)
+    params[description.parameters()[i].name] = {{"value", values.parameters[i]},
+                                                {"unit", description.parameters()[i].unit}};
   root["parameters"] = params;
-  return root;
-}
-
-}  // namespace
-
-void write_parameters_json(const Parameters<double>& par, const std::string& path) {
-  write_json(parameters_object(par), path);
-}
-
-void write_parameters_json(const Parameters<double>& par, const std::string& path,
-                           const std::vector<ParameterAnnotation>& annotations,
-                           const std::string& extra_json_object) {
-  Json root = parameters_object(par);
   for (const ParameterAnnotation& a : annotations) {
     if (!root["parameters"].contains(a.name))
       fail(path, "annotation for unknown parameter '" + a.name + "'");
@@ -150,61 +165,54 @@ void write_parameters_json(const Parameters<double>& par, const std::string& pat
   write_json(root, path);
 }
 
+namespace acst {
+
+namespace {
+
+std::vector<double> values_of(const Parameters<double>& par) {
+  std::vector<double> x;
+  for (const ParameterField<double>& f : kParameterFields<double>) x.push_back(par.*f.member);
+  return x;
+}
+
+}  // namespace
+
+Parameters<double> read_parameters_json(const std::string& path) {
+  const ParameterValues values = read_parameter_file(path, "acst");
+  Parameters<double> par;
+  for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
+    par.*kParameterFields<double>[k].member = values.parameters[k];
+  return par;
+}
+
+void write_parameters_json(const Parameters<double>& par, const std::string& path) {
+  write_parameters_json(par, path, {}, "");
+}
+
+void write_parameters_json(const Parameters<double>& par, const std::string& path,
+                           const std::vector<ParameterAnnotation>& annotations,
+                           const std::string& extra_json_object) {
+  validate_parameters(par);  // std::runtime_error naming the parameter, as before the file
+  write_parameter_file(path, {"acst", {kAtmosphericPressure}, values_of(par)}, annotations,
+                       extra_json_object);
+}
+
 }  // namespace acst
 
 namespace network {
 
-// The contact-network model's file (docs/network-model.md, "Parameter file"):
-//   {"model": "contact_network", "youngs_modulus": {"value": 1.5e8, "unit": "Pa"},
-//    "parameters": {"kappa": {"value": 133.5, "unit": "1"}, ...}, ...}
 Parameters<double> read_parameters_json(const std::string& path, double* youngs_modulus) {
-  const Json root = read_json(path);
-  if (!root.contains("model") || root["model"] != "contact_network")
-    fail(path, "key 'model' must be \"contact_network\"");
-  if (!root.contains("youngs_modulus") || !root["youngs_modulus"].is_object() ||
-      !root["youngs_modulus"].contains("value") || !root["youngs_modulus"]["value"].is_number() ||
-      root["youngs_modulus"].value("unit", "") != "Pa" ||
-      !(root["youngs_modulus"]["value"].get<double>() > 0.0))
-    fail(path, "key 'youngs_modulus' must be {\"value\": E > 0, \"unit\": \"Pa\"}");
-  if (youngs_modulus) *youngs_modulus = root["youngs_modulus"]["value"].get<double>();
-  if (!root.contains("parameters") || !root["parameters"].is_object())
-    fail(path, "missing key 'parameters' (an object)");
-  const Json& params = root["parameters"];
-  std::array<double, kNumParameters> x;
-  for (int i = 0; i < kNumParameters; ++i) {
-    const std::string name = parameter_names()[i], key = "parameters." + name;
-    if (i >= kNumFirstVersionParameters && !params.contains(name)) {
-      x[i] = value_if_absent(i);  // a file written before the parameter was added
-      continue;
-    }
-    if (!params.contains(name) || !params[name].is_object() || !params[name].contains("value"))
-      fail(path, "missing key '" + key + ".value'");
-    if (!params[name]["value"].is_number()) fail(path, "key '" + key + ".value' must be a number");
-    if (params[name].value("unit", "") != "1") fail(path, "key '" + key + ".unit' must be \"1\"");
-    x[i] = params[name]["value"].get<double>();
-  }
-  const Parameters<double> par = from_array(x.data());
-  try {
-    validate(par);
-  } catch (const std::invalid_argument& e) {
-    fail(path, e.what());
-  }
-  return par;
+  const ParameterValues values = read_parameter_file(path, "contact_network");
+  if (youngs_modulus) *youngs_modulus = values.constants[0];
+  return from_array(values.parameters.data());
 }
 
 void write_parameters_json(const Parameters<double>& par, double youngs_modulus,
                            const std::string& path, const std::string& extra_json_object) {
-  validate(par);
-  Json root;
-  root["model"] = "contact_network";
-  root["youngs_modulus"] = {{"value", youngs_modulus}, {"unit", "Pa"}};
-  Json params = Json::object();
+  validate(par);  // std::invalid_argument naming the parameter
   const auto x = to_array(par);
-  for (int i = 0; i < kNumParameters; ++i)
-    params[parameter_names()[i]] = {{"value", x[i]}, {"unit", "1"}};
-  root["parameters"] = params;
-  merge_extra(root, extra_json_object, path);
-  write_json(root, path);
+  write_parameter_file(path, {"contact_network", {youngs_modulus}, {x.begin(), x.end()}}, {},
+                       extra_json_object);
 }
 
 }  // namespace network

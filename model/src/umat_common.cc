@@ -44,11 +44,13 @@ std::string& last_message() {
   return message;
 }
 
-void report(const std::string& message, const int* noel, const int* npt, double* pnewdt) {
+void report(const std::string& message, const int* noel, const int* npt, double* pnewdt,
+            double step_ratio) {
   last_message() = message;
   std::fprintf(stderr, "sffcal_umat: element %d point %d: %s; asking for a smaller increment\n",
                noel ? *noel : -1, npt ? *npt : -1, message.c_str());
-  if (pnewdt) *pnewdt = std::min(*pnewdt, 0.5);
+  // A PNEWDT <= 0 on entry is no request of the FE code's own (CalculiX passes -1): replace it.
+  if (pnewdt) *pnewdt = *pnewdt > 0.0 ? std::min(*pnewdt, step_ratio) : step_ratio;
 }
 
 }  // namespace model::umat_detail

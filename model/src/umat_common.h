@@ -1,18 +1,37 @@
-// What the two UMAT entries (model/umat.h: ACST and the contact-network model) share: the
-// conversions between the UMAT's component order and 3x3 tensors, the check of the element
-// layout, and the report of a failed update through PNEWDT and sffcal_umat_last_message().
+// The UMAT of every registered model: its body (umat_body.cc, laid out from the model's
+// description), the conversions between the UMAT's component order and 3x3 tensors, the check of
+// the element layout, and the report of a failed update through PNEWDT and
+// sffcal_umat_last_message().
 #ifndef SFFCAL_CALIBRATION_UMAT_COMMON_H_
 #define SFFCAL_CALIBRATION_UMAT_COMMON_H_
 
 #include <Eigen/Core>
 
-#include <cstdlib>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
+#include "model/descriptor.h"
+
 namespace model::umat_detail {
+
+/// The model a UMAT material name (CMNAME, blank padded) chooses: the registered model whose
+/// umat_name() begins it, in any case; ACST for any other name (as before the other models).
+const ModelDescription& umat_model(const char* cmname, std::size_t cmname_length);
+
+/// One UMAT call for the model d (the arguments the body reads; model/umat.h states the rest):
+///   PROPS: the initial inputs (d.initial_inputs()), then the constants that are not fixed and the
+///          parameters in the order of d's tables (those added after a model's first version may
+///          be left out: their value_if_absent); or the initial inputs alone, the rest from the
+///          parameter file named by d.parameter_file_variable();
+///   STATEV(1): 0 before the first increment (the state then from STRESS and PROPS), 1 after;
+///   STATEV(2..): the state, laid out as d.state(); its tensors turned by DROT at each increment;
+///   DDSDDE: the consistent tangent (unsymmetric); where the update fails, the model's stiffness
+///          at the start, STRESS and STATEV left unchanged and PNEWDT at most 0.5;
+///   an unreliable update is kept and asks for a smaller increment (PNEWDT at most 0.5).
+void umat_body(const ModelDescription& d, double* stress, double* statev, double* ddsdde,
+               const double* dstran, const int* ndi, const int* nshr, const int* ntens,
+               const int* nstatv, const double* props, const int* nprops, const double* drot,
+               double* pnewdt, const int* noel, const int* npt);
 
 // Abaqus order 11, 22, 33, 12, 13, 23.
 inline constexpr int kRow[6] = {0, 1, 2, 0, 0, 1};
@@ -36,33 +55,11 @@ void check_layout(int ndi, int nshr, int ntens, int nstatv, int needed_statev);
 /// The calling thread's last message (cleared at the start of each call).
 std::string& last_message();
 
-/// Records the message, prints it on stderr with the element and point, and sets PNEWDT to at
-/// most 0.5 (Abaqus repeats the increment with a smaller one).
-void report(const std::string& message, const int* noel, const int* npt, double* pnewdt);
-
-/// The file named by the environment variable `variable`, read by read(path) once per path and
-/// kept (thread-safe; a new path is read anew). Throws std::runtime_error with unset_message where
-/// the variable is unset or empty, or with the message read threw (on every call).
-template <typename Value, typename Read>
-Value read_file_once(const char* variable, const char* unset_message, Read read) {
-  static std::mutex mutex;
-  static std::string path_read, error;
-  static Value cached;
-  const char* path = std::getenv(variable);
-  if (!path || !*path) throw std::runtime_error(unset_message);
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (path_read != path) {
-    path_read = path;
-    error.clear();
-    try {
-      cached = read(path_read);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  if (!error.empty()) throw std::runtime_error(error);
-  return cached;
-}
+/// Records the message, prints it on stderr with the element and point, and asks for a smaller
+/// increment: PNEWDT becomes at most step_ratio (the FE code repeats the increment scaled by it),
+/// and step_ratio where it came in <= 0, which is no request (CalculiX passes -1).
+void report(const std::string& message, const int* noel, const int* npt, double* pnewdt,
+            double step_ratio = 0.5);
 
 }  // namespace model::umat_detail
 

@@ -936,7 +936,7 @@ TEST(NetworkModel, TheParameterFileRoundTripsAndNamesWhatIsWrong) {
   };
   expect_error(R"({"model": "acst"})", "'model'");
   expect_error(R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8, "unit": "Pa"},
-                  "parameters": {}})", "parameters.kappa.value");
+                  "parameters": {}})", "missing key 'parameters.kappa'");
   std::string text = R"({"model": "contact_network", "youngs_modulus": {"value": 1.5e8,
                          "unit": "Pa"}, "parameters": {)";
   const auto x = to_array(p);

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "model/update_status.h"
+
 namespace fe_model {
 
 using SymmetricTensor2 = dealii::SymmetricTensor<2, 3>;
@@ -32,18 +34,13 @@ struct PointState {
   std::vector<double> internal_variables;
 };
 
-/// Outcome of a material update, in the order of MGIS' -1/0/1 (failed/unreliable/ok).
-enum class MaterialStatus {
-  kOk,          ///< converged to the law's tolerance.
-  kUnreliable,  ///< a result is returned but its accuracy is doubtful (accepted, counted, logged).
-  kFailed,      ///< no usable result: the FE code cuts the load step.
-};
-
-/// "ok", "unreliable" or "failed".
-const char* to_string(MaterialStatus status);
-
-/// The worse of two statuses (failed > unreliable > ok).
-MaterialStatus worst(MaterialStatus a, MaterialStatus b);
+/// Outcome of a material update: the models' own status (model/update_status.h). kOk: converged to
+/// the law's tolerance; kUnreliable: a result whose accuracy is doubtful (accepted, counted,
+/// logged, or the step cut: SolverOptions::cut_on_unreliable); kFailed: no usable result, the FE
+/// code cuts the load step.
+using MaterialStatus = model::UpdateStatus;
+using model::to_string;
+using model::worst;
 
 /// Result of Material::update. The stress is in `end.stress`.
 struct MaterialUpdate {

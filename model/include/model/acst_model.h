@@ -21,6 +21,10 @@
 #include <utility>
 #include <vector>
 
+#include "model/parameter_field.h"
+#include "model/parameter_file.h"
+#include "model/update_status.h"
+
 namespace model::acst {
 
 /// p_a, the reference pressure of the model [Pa].
@@ -47,37 +51,16 @@ struct Parameters {
 namespace detail {
 /// The void ratio where the elastic law's (2.97 - e)^2 vanishes (DM04 Eq. 5).
 inline constexpr double kElasticVoidLimit = 2.97;
-inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
-/// ParameterField::value_if_absent of a parameter every parameter file must give.
-inline constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
+inline constexpr double kUnbounded = model::kUnbounded;
 }  // namespace detail
 
-/// Where a parameter is physical: low < x < high, with <= at a closed end.
-struct ParameterRange {
-  double low, high;
-  bool low_closed, high_closed;
-  constexpr bool contains(double x) const {
-    return (low_closed ? x >= low : x > low) && (high_closed ? x <= high : x < high);
-  }
-  /// As docs/model.md writes it: "> 0", ">= 0", "in (-1, 0.5)", "in (0, 1]".
-  std::string describe() const;
-};
+using model::ParameterRange;
 
-/// One parameter of acst-model.md: its name (the key of the parameter file and of the fit's
-/// tables), its member, its unit, the range validate_parameters accepts (besides the coupled
-/// conditions m < c M_c and c_h e_gamma < 1), the calibration's default search range, and the
-/// value a parameter file or UMAT PROPS without it stands for (kRequired: none; a parameter added
-/// after the first version takes the value that gives the model without it).
+/// One parameter of acst-model.md (model/parameter_field.h): besides its range, validate_parameters
+/// checks the coupled conditions m < c M_c and c_h e_gamma < 1; every parameter is dimensionless
+/// (unit "1": G0 multiplies p_a).
 template <typename T>
-struct ParameterField {
-  const char* name;
-  T Parameters<T>::*member;
-  const char* unit;  ///< "1": every parameter is dimensionless (G0 multiplies p_a)
-  ParameterRange physical;
-  double fit_low, fit_high;
-  double value_if_absent = detail::kRequired;
-  constexpr bool required() const { return value_if_absent != value_if_absent; }  // NaN: none
-};
+using ParameterField = model::ParameterField<Parameters<T>, T>;
 
 /// The parameters in the order of acst-model.md, then n_b_loose, n_G and n_F (ours): the one
 /// list that the parameter file, its validation, the fit vector, the fit's bounds and tables and
@@ -115,12 +98,14 @@ struct State {
   Tensor<T> fabric;    // model fabric F (deviatoric)
 };
 
-/// kOk: integrated to tolerance. kUnreliable: integrated over the whole increment, but at least
-/// one substep of the minimum size was accepted with a local error above the tolerance.
-/// kFailed: not integrated (non-finite input or result, p below options.min_pressure, e outside
-/// the range of the elastic law, no admissible plastic modulus, max_substeps exhausted); the
-/// returned state is then the start state, unchanged.
-enum class UpdateStatus { kOk, kUnreliable, kFailed };
+/// The update's outcome (model/update_status.h). For ACST, kOk: integrated to tolerance.
+/// kUnreliable: integrated over the whole increment, but at least one substep of the minimum size
+/// was accepted with a local error above the tolerance, or (implicit without error control) a step
+/// whose error estimate exceeds max_step_error. kFailed: not integrated (non-finite input or
+/// result, p below options.min_pressure, e outside the range of the elastic law, no admissible
+/// plastic modulus, max_substeps exhausted); the returned state is then the start state, unchanged.
+using model::UpdateStatus;
+using model::to_string;
 
 /// The explicit substep scheme: kBogackiShampine, the embedded Runge-Kutta pair of order 3(2)
 /// (Bogacki & Shampine 1989; the default, ours), or kModifiedEuler, the order 2(1) pair of Sloan,
@@ -209,9 +194,6 @@ UpdateStatus update_with_tangent(const Parameters<double>& par, const State<doub
                                  const IntegrationOptions& options = {},
                                  UpdateReport* report = nullptr);
 
-/// "ok", "unreliable" or "failed".
-const char* to_string(UpdateStatus status);
-
 /// Throws std::runtime_error naming the first non-physical parameter.
 void validate_parameters(const Parameters<double>& par);
 
@@ -219,25 +201,13 @@ void validate_parameters(const Parameters<double>& par);
 /// (docs/model.md §3, Eq. 1).
 bool is_admissible_void_ratio(double e);
 
-/// Parameters from the calibration output (JSON, see docs/model.md); throws std::runtime_error
+/// The ACST parameter file (model/parameter_file.h, docs/model.md); throws std::runtime_error
 /// naming the missing/invalid key.
 Parameters<double> read_parameters_json(const std::string& path);
-/// The material a parameter file is for: its key "model", "acst" where absent (files of the first
-/// versions), e.g. "contact_network" (model/network_model.h). Throws std::runtime_error
-/// naming the file if it cannot be read or is not a JSON object.
-std::string parameter_file_model(const std::string& path);
+using model::parameter_file_model;
+using model::ParameterAnnotation;
 /// Writes the layout read_parameters_json reads (each parameter with value and unit).
 void write_parameters_json(const Parameters<double>& par, const std::string& path);
-
-/// What a calibration knows about one parameter, written next to its value by the overload of
-/// write_parameters_json below (read_parameters_json ignores it).
-struct ParameterAnnotation {
-  std::string name;             ///< a key of "parameters" (a parameter not in the file is an error)
-  double lower = 0.0, upper = 0.0;
-  double standard_error = -1.0;  ///< < 0: not estimated (written as null)
-  bool fixed = true, at_bound = false;
-  std::string stage;            ///< the fit stage that set it
-};
 /// The same layout, each parameter with its annotation ("lower", "upper", "standard_error",
 /// "fixed", "at_bound", "stage"), and the members of extra_json_object (a JSON object text, e.g.
 /// "provenance") added at the top level. Throws std::runtime_error if extra_json_object is not

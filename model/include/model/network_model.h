@@ -22,6 +22,7 @@
 #include <string>
 
 #include "model/network_tensor.h"
+#include "model/parameter_field.h"
 
 namespace model::network {
 
@@ -96,94 +97,112 @@ inline constexpr int kCriticalSlopeIndex = 23;
 inline constexpr int kTargetVoidRatioWeightIndex = 24;
 inline constexpr int kInherentFadeIndex = 25;
 inline constexpr int kFabricRateExponentIndex = 26;
-/// The value of an added parameter (index >= kNumFirstVersionParameters) in a parameter file or
-/// UMAT PROPS that does not give it: the model as it was before the parameter was added (c_t = 1,
-/// no Lode dependence; c_l = 0, no gain of contacts with the normal force; n_kappa = 1, ln Lambda
-/// linear in the strain; d_psi = 0, no critical void ratio line, whose e_gamma and lambda_e then
-/// do nothing: 0.8 and 0, values within their bounds; w_psi = 0, targets in xi alone; r_i = 1,
-/// the inherent fabric fading with the rest; n_ra = 0, the fabric at the forces' rate factor).
-inline double value_if_absent(int index) {
-  switch (index) {
-    case kLambdaGainIndex:
-    case kStateDilatancyIndex:
-    case kCriticalSlopeIndex:
-    case kTargetVoidRatioWeightIndex:
-    case kFabricRateExponentIndex:
-      return 0.0;
-    case kCriticalVoidRatioIndex:
-      return 0.8;
-    default:
-      return 1.0;
-  }
+
+/// One parameter of the model (model/parameter_field.h). Each is dimensionless; its closed range
+/// [low, high] is where the model is meant to be used (docs/network-model.md): validate refuses a
+/// parameter outside it and the fit searches within it. c_v >= 0: compression adds contacts.
+template <typename T>
+using ParameterField = model::ParameterField<Parameters<T>, T>;
+
+namespace detail {
+template <typename T>
+constexpr ParameterField<T> field(const char* name, T Parameters<T>::*member, double low,
+                                  double high, double value_if_absent = kRequired) {
+  return {name, member, "1", {low, high, true, true}, low, high, value_if_absent};
 }
+}  // namespace detail
+
+/// The parameters in the order of the fit vector and of UMAT PROPS(22..48): the one list that the
+/// parameter file, PROPS, validate, the fit's bounds and tables follow. A parameter added after the
+/// first version has the value that gives the model as it was before it, where a parameter file or
+/// PROPS does not give it: c_t = 1, no Lode dependence; c_l = 0, no gain of contacts with the
+/// normal force; n_kappa = 1, ln Lambda linear in the strain; d_psi = 0, no critical void ratio
+/// line, whose e_gamma and lambda_e then do nothing (0.8 and 0, values within their ranges);
+/// w_psi = 0, targets in xi alone; r_i = 1, the inherent fabric fading with the rest; n_ra = 0,
+/// the fabric at the forces' rate factor.
+template <typename T>
+inline constexpr std::array<ParameterField<T>, kNumParameters> kParameterFields = {{
+    detail::field<T>("kappa", &Parameters<T>::kappa, 10.0, 1e5),
+    detail::field<T>("z_c", &Parameters<T>::z_c, 2.0, 10.0),
+    detail::field<T>("zeta", &Parameters<T>::zeta, 0.0, 1.0),
+    detail::field<T>("k_z", &Parameters<T>::k_z, 0.0, 1000.0),
+    detail::field<T>("c_v", &Parameters<T>::c_v, 0.0, 100.0),
+    detail::field<T>("a_cs", &Parameters<T>::a_cs, 0.2, 3.0),
+    detail::field<T>("a_z", &Parameters<T>::a_z, -5.0, 5.0),
+    detail::field<T>("k_a", &Parameters<T>::k_a, 1.0, 1000.0),
+    detail::field<T>("f_cs", &Parameters<T>::f_cs, 0.2, 3.0),
+    detail::field<T>("f_z", &Parameters<T>::f_z, -5.0, 5.0),
+    detail::field<T>("k_f", &Parameters<T>::k_f, 1.0, 3000.0),
+    detail::field<T>("t_cs", &Parameters<T>::t_cs, 0.0, 0.5),
+    detail::field<T>("t_z", &Parameters<T>::t_z, -1.0, 1.0),
+    detail::field<T>("k_t", &Parameters<T>::k_t, 1.0, 5000.0),
+    detail::field<T>("d_z", &Parameters<T>::d_z, -30.0, 30.0),
+    detail::field<T>("d_a", &Parameters<T>::d_a, -30.0, 30.0),
+    detail::field<T>("n_r", &Parameters<T>::n_r, -10.0, 10.0),
+    detail::field<T>("n_z", &Parameters<T>::n_z, -10.0, 10.0),
+    detail::field<T>("c_t", &Parameters<T>::c_t, 0.2, 2.0, 1.0),
+    detail::field<T>("c_l", &Parameters<T>::c_l, 0.0, 1.0, 0.0),
+    detail::field<T>("n_kappa", &Parameters<T>::n_kappa, 0.0, 1.0, 1.0),
+    detail::field<T>("d_psi", &Parameters<T>::d_psi, 0.0, 30.0, 0.0),
+    detail::field<T>("e_gamma", &Parameters<T>::e_gamma, 0.3, 1.5, 0.8),
+    detail::field<T>("lambda_e", &Parameters<T>::lambda_e, 0.0, 0.3, 0.0),
+    detail::field<T>("w_psi", &Parameters<T>::w_psi, 0.0, 10.0, 0.0),
+    detail::field<T>("r_i", &Parameters<T>::r_i, 0.0, 1.0, 1.0),
+    detail::field<T>("n_ra", &Parameters<T>::n_ra, -10.0, 10.0, 0.0),
+}};
+
+/// The value of the parameter at `index` in a parameter file or UMAT PROPS that does not give it
+/// (kParameterFields' value_if_absent; NaN for the first version's, which every file gives).
+inline double value_if_absent(int index) { return kParameterFields<double>[index].value_if_absent; }
+
 /// Names in the order of to_array/from_array.
 inline const std::array<const char*, kNumParameters>& parameter_names() {
-  static const std::array<const char*, kNumParameters> names = {{
-      "kappa", "z_c", "zeta", "k_z", "c_v", "a_cs", "a_z", "k_a",
-      "f_cs",  "f_z", "k_f",  "t_cs", "t_z", "k_t", "d_z", "d_a", "n_r", "n_z", "c_t",
-      "c_l",   "n_kappa", "d_psi", "e_gamma", "lambda_e", "w_psi", "r_i",
-      "n_ra"}};
+  static const std::array<const char*, kNumParameters> names = [] {
+    std::array<const char*, kNumParameters> n{};
+    for (int i = 0; i < kNumParameters; ++i) n[i] = kParameterFields<double>[i].name;
+    return n;
+  }();
   return names;
 }
 
 template <typename T>
 std::array<T, kNumParameters> to_array(const Parameters<T>& p) {
-  return {{p.kappa, p.z_c, p.zeta, p.k_z, p.c_v, p.a_cs, p.a_z, p.k_a,
-          p.f_cs,  p.f_z, p.k_f,  p.t_cs, p.t_z, p.k_t, p.d_z, p.d_a, p.n_r, p.n_z, p.c_t,
-          p.c_l,   p.n_kappa, p.d_psi, p.e_gamma, p.lambda_e, p.w_psi, p.r_i,
-          p.n_ra}};
+  std::array<T, kNumParameters> x;
+  for (int i = 0; i < kNumParameters; ++i) x[i] = p.*kParameterFields<T>[i].member;
+  return x;
 }
 
 template <typename T>
 Parameters<T> from_array(const T* x) {
   Parameters<T> p;
-  p.kappa = x[0], p.z_c = x[1], p.zeta = x[2], p.k_z = x[3], p.c_v = x[4], p.a_cs = x[5];
-  p.a_z = x[6], p.k_a = x[7], p.f_cs = x[8], p.f_z = x[9], p.k_f = x[10], p.t_cs = x[11];
-  p.t_z = x[12], p.k_t = x[13], p.d_z = x[14], p.d_a = x[15], p.n_r = x[16];
-  p.n_z = x[17], p.c_t = x[18], p.c_l = x[19], p.n_kappa = x[20];
-  p.d_psi = x[21], p.e_gamma = x[22], p.lambda_e = x[23], p.w_psi = x[24];
-  p.r_i = x[25], p.n_ra = x[26];
+  for (int i = 0; i < kNumParameters; ++i) p.*kParameterFields<T>[i].member = x[i];
   return p;
 }
 
-/// The ranges where the model is meant to be used (docs/network-model.md): validate refuses a
-/// parameter outside them and the fit searches within them. c_v >= 0: compression adds contacts.
+/// The low (high) ends of the parameters' ranges.
 inline Parameters<double> lower_bounds() {
   Parameters<double> p;
-  p.kappa = 10.0, p.z_c = 2.0, p.zeta = 0.0, p.k_z = 0.0, p.c_v = 0.0;
-  p.a_cs = 0.2, p.a_z = -5.0, p.k_a = 1.0;
-  p.f_cs = 0.2, p.f_z = -5.0, p.k_f = 1.0;
-  p.t_cs = 0.0, p.t_z = -1.0, p.k_t = 1.0;
-  p.d_z = -30.0, p.d_a = -30.0, p.n_r = -10.0, p.n_z = -10.0;
-  p.c_t = 0.2, p.c_l = 0.0, p.n_kappa = 0.0;
-  p.d_psi = 0.0, p.e_gamma = 0.3, p.lambda_e = 0.0, p.w_psi = 0.0, p.r_i = 0.0;
-  p.n_ra = -10.0;
+  for (const ParameterField<double>& f : kParameterFields<double>) p.*f.member = f.fit_low;
   return p;
 }
 
 inline Parameters<double> upper_bounds() {
   Parameters<double> p;
-  p.kappa = 1e5, p.z_c = 10.0, p.zeta = 1.0, p.k_z = 1000.0, p.c_v = 100.0;
-  p.a_cs = 3.0, p.a_z = 5.0, p.k_a = 1000.0;
-  p.f_cs = 3.0, p.f_z = 5.0, p.k_f = 3000.0;
-  p.t_cs = 0.5, p.t_z = 1.0, p.k_t = 5000.0;
-  p.d_z = 30.0, p.d_a = 30.0, p.n_r = 10.0, p.n_z = 10.0;
-  p.c_t = 2.0, p.c_l = 1.0, p.n_kappa = 1.0;
-  p.d_psi = 30.0, p.e_gamma = 1.5, p.lambda_e = 0.3, p.w_psi = 10.0, p.r_i = 1.0;
-  p.n_ra = 10.0;
+  for (const ParameterField<double>& f : kParameterFields<double>) p.*f.member = f.fit_high;
   return p;
 }
 
 /// Throws std::invalid_argument naming the first parameter that is not finite or lies outside
-/// [lower_bounds, upper_bounds].
+/// its range.
 inline void validate(const Parameters<double>& par) {
-  const auto x = to_array(par), lo = to_array(lower_bounds()), hi = to_array(upper_bounds());
-  for (int i = 0; i < kNumParameters; ++i)
-    if (!std::isfinite(x[i]) || x[i] < lo[i] || x[i] > hi[i])
-      throw std::invalid_argument(std::string("contact-network parameter ") +
-                                  parameter_names()[i] + " = " + std::to_string(x[i]) +
-                                  " is not within [" + std::to_string(lo[i]) + ", " +
-                                  std::to_string(hi[i]) + "]");
+  for (const ParameterField<double>& f : kParameterFields<double>) {
+    const double x = par.*f.member;
+    if (!std::isfinite(x) || !f.physical.contains(x))
+      throw std::invalid_argument(std::string("contact-network parameter ") + f.name + " = " +
+                                  std::to_string(x) + " is not within [" +
+                                  std::to_string(f.physical.low) + ", " +
+                                  std::to_string(f.physical.high) + "]");
+  }
 }
 
 /// The parameter file (docs/network-model.md, "Parameter file"): {"model": "contact_network",

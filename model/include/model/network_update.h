@@ -12,6 +12,7 @@
 #include <string>
 
 #include "model/network_model.h"
+#include "model/update_status.h"
 
 namespace model::network {
 
@@ -19,18 +20,19 @@ namespace model::network {
 inline constexpr int kMaxUpdateSubsteps = 10000;
 
 struct UpdateResult {
-  bool ok = false;
-  State<double> end;  ///< the start state where !ok
+  /// kOk or kFailed (model/update_status.h): RK4 with a fixed substep count has no unreliable case.
+  UpdateStatus status = UpdateStatus::kFailed;
+  State<double> end;  ///< the start state where failed
   /// d sigma_ij / d eps_kl at row 3 i + j, column 3 k + l, symmetric in (k, l): d sigma_ij =
   /// tangent(ij, kl) d eps_kl summed over all nine kl. The same in the tension-positive
   /// convention (both signs flip).
   Eigen::Matrix<double, 9, 9> tangent = Eigen::Matrix<double, 9, 9>::Zero();
   int substeps = 0;
-  std::string message;  ///< why !ok
+  std::string message;  ///< why it failed
 };
 
 /// Integrates the strain increment (compression positive) from `start` with substeps_for's
-/// substep count. Fails (ok = false, the start state kept, message saying why) where the increment
+/// substep count. Fails (kFailed, the start state kept, message saying why) where the increment
 /// needs more than max_substeps substeps or the end state is not admissible (void ratio,
 /// coordination or Lambda not positive, or anything not finite).
 UpdateResult update_with_tangent(const Parameters<double>& par, const State<double>& start,

@@ -12,9 +12,9 @@
  *   PROPS(1)      initial void ratio e_0
  *   PROPS(2..7)   initial model fabric F_0 (deviatoric), components 11, 22, 33, 12, 13, 23
  *   PROPS(8..22)  the 15 parameters G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0,
- *                 n_d, e_A, k_F (docs/model.md §5); with NPROPS < 22 they are read instead from
+ *                 n_d, e_A, k_F (docs/model.md §5); with NPROPS = 7 they are read instead from
  *                 the parameter file (JSON, docs/model.md) named by the environment variable
- *                 SFFCAL_ACST_PARAMETERS.
+ *                 SFFCAL_ACST_PARAMETERS. NPROPS from 8 to 21, or above 25, is refused.
  *   PROPS(23)     n_b_loose (docs/model.md Eq. 7); 0 (the model without it) when NPROPS < 23.
  *   PROPS(24)     n_G (docs/model.md Eq. 1); 1/2 (the model without it) when NPROPS < 24.
  *   PROPS(25)     n_F (docs/model.md Eq. 16); 0 (the model without it) when NPROPS < 25.
@@ -28,9 +28,13 @@
  *   STATEV(21)     status of the last update: 0 ok, 1 unreliable
  *   STATEV(22)     substeps of the last update
  * DDSDDE(i, j) = d dSTRESS(i) / d dSTRAN(j), the consistent tangent (unsymmetric).
+ * The tensors of STATEV are turned by DROT (Delta R X Delta R^T) before each increment.
+ * The layout is the ACST model's description (model/descriptor.h) through the body every model's
+ * UMAT shares (model/src/umat_body.cc).
  * An update that fails, or is unreliable (its error estimate above the model's bound: the
  * increment is too large), sets PNEWDT to at most 0.5 (Abaqus repeats the increment with a smaller
- * one); a failed update leaves STRESS and STATEV unchanged. A bad PROPS, NTENS or parameter file
+ * one); a failed update leaves STRESS and STATEV unchanged, DDSDDE the elastic stiffness at the
+ * start. A bad PROPS, NTENS or parameter file
  * is reported the same way, with a message on stderr and in sffcal_umat_last_message().
  * SSE, SPD, SCD, RPL and the temperature terms are not touched.
  */

@@ -52,10 +52,12 @@
  *   STATEV(17..22) F^t
  *   STATEV(23)     RK4 substeps of the last update
  *   STATEV(24..29) A_i, the fabric's inherent part (Eq. N2d)
- * DDSDDE: the exact consistent tangent (unsymmetric). A failed update (more than 10,000 substeps,
- * or a state that leaves the admissible range), a bad PROPS, NTENS or parameter file leave STRESS
- * and STATEV unchanged and set PNEWDT to at most 0.5, with a message on stderr and in
- * sffcal_umat_last_message().
+ * DDSDDE: the exact consistent tangent (unsymmetric). The tensors of STATEV are turned by DROT
+ * (Delta R X Delta R^T) before each increment. A failed update (more than 10,000 substeps, or a
+ * state that leaves the admissible range) leaves STRESS and STATEV unchanged, DDSDDE the tangent
+ * of a zero increment at the start; it, a bad PROPS, NTENS or parameter file set PNEWDT to at
+ * most 0.5, with a message on stderr and in sffcal_umat_last_message(). The layout is the
+ * network's description (model/descriptor.h) through the body every model's UMAT shares.
  */
 #ifndef SFFCAL_CALIBRATION_UMAT_NETWORK_H_
 #define SFFCAL_CALIBRATION_UMAT_NETWORK_H_
