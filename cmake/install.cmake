@@ -29,6 +29,7 @@ if(TARGET fe_model)
     fe_model/include/fe_model/solver_options.h
     fe_model/include/fe_model/solid.h
     fe_model/include/fe_model/triaxial.h
+    fe_model/include/fe_model/model_material.h
     fe_model/include/fe_model/acst_material.h
     fe_model/include/fe_model/network_material.h
     DESTINATION include/fe_model)

@@ -240,7 +240,7 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
 
     // The material point on the element's axial strains, from the element's initial state.
     const auto t0 = std::chrono::steady_clock::now();
-    const model::network::State<double> point0 = NetworkMaterial::to_model(
+    const model::network::State<double> point0 = material.to_model(
         material.initial_state(-dem.confining_pressure * dealii::unit_symmetric_tensor<3>()));
     calibration::TestData path_test = test;
     path_test.axial_strain.clear();

@@ -169,4 +169,12 @@ const ModelDescription& acst_description() {
   return description;
 }
 
+std::unique_ptr<Behaviour> acst::make_behaviour(const acst::Parameters<double>& par,
+                                                const acst::IntegrationOptions& options) {
+  std::vector<double> values;
+  for (const auto& f : acst::kParameterFields<double>) values.push_back(par.*f.member);
+  acst_description().validate({acst::kAtmosphericPressure}, values);
+  return std::make_unique<AcstBehaviour>(acst_description(), par, options);
+}
+
 }  // namespace model

@@ -166,4 +166,11 @@ const ModelDescription& network_description() {
   return description;
 }
 
+std::unique_ptr<Behaviour> network::make_behaviour(const network::Parameters<double>& par,
+                                                   double youngs_modulus) {
+  const auto x = network::to_array(par);
+  network_description().validate({youngs_modulus}, {x.begin(), x.end()});
+  return std::make_unique<NetworkBehaviour>(network_description(), par, youngs_modulus);
+}
+
 }  // namespace model

@@ -86,6 +86,33 @@ ParameterValues values_from_props(const ModelDescription& d, const double* props
   return values;
 }
 
+// The behaviour for the values PROPS (or the parameter file) give, made and validated once per
+// thread for as long as they stay the same: FE codes call the UMAT with the same PROPS at every
+// point of a material, and making it at every call cost 3-10 % of an update.
+const Behaviour& behaviour_for(const ModelDescription& d, const double* props, int nprops,
+                               int inputs) {
+  struct Cache {
+    const ModelDescription* model = nullptr;
+    std::string file;           // the parameter file's path where PROPS give the inputs alone
+    std::vector<double> given;  // PROPS after the initial inputs
+    std::unique_ptr<Behaviour> behaviour;
+  };
+  thread_local Cache cache;
+  const char* path = nprops == inputs ? std::getenv(d.parameter_file_variable().c_str()) : nullptr;
+  const std::string file = path ? path : "";
+  const std::size_t n = static_cast<std::size_t>(nprops - inputs);
+  if (cache.model == &d && cache.behaviour && cache.file == file && cache.given.size() == n &&
+      std::equal(props + inputs, props + nprops, cache.given.begin()))
+    return *cache.behaviour;
+  const ParameterValues values =
+      nprops == inputs ? values_from_file(d, inputs) : values_from_props(d, props, nprops, inputs);
+  cache.behaviour = d.make(values.constants, values.parameters);
+  cache.model = &d;
+  cache.file = file;
+  cache.given.assign(props + inputs, props + nprops);
+  return *cache.behaviour;
+}
+
 // The 3x3 matrix of DROT (Fortran order, column by column).
 Eigen::Matrix3d rotation_of(const double* drot) {
   Eigen::Matrix3d r;
@@ -125,16 +152,16 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
       throw std::runtime_error("NPROPS = " + std::to_string(*nprops) + ": " +
                                props_name(0, inputs) + " must give the initial " + names);
     }
-    const ParameterValues values = *nprops == inputs ? values_from_file(d, inputs)
-                                                     : values_from_props(d, props, *nprops, inputs);
-    const std::unique_ptr<Behaviour> behaviour = d.make(values.constants, values.parameters);
+    const Behaviour& behaviour = behaviour_for(d, props, *nprops, inputs);
 
     const Eigen::Matrix3d start_stress = from_abaqus(stress, n, -1.0, 1.0);  // compression +
-    std::vector<double> start(state_size), end(state_size);
+    thread_local std::vector<double> start, end;
+    start.assign(static_cast<std::size_t>(state_size), 0.0);
+    end.assign(static_cast<std::size_t>(state_size), 0.0);
     Eigen::Matrix3d sigma = start_stress;
     if (statev[0] == 0.0) {
       try {
-        sigma = behaviour->initial_state(start_stress, props, start.data());
+        sigma = behaviour.initial_state(start_stress, props, start.data());
       } catch (const InvalidInput& e) {
         const int offset = slot_offset(d.initial_inputs(), e.slot());
         const int size = offset < 0 ? 1 : d.initial_inputs()[offset].size();
@@ -147,7 +174,7 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
       if (!r.isIdentity(0.0)) rotate_state(d.state(), r, start.data());  // NLGEOM's DROT
     }
     const Eigen::Matrix3d increment = from_abaqus(dstran, n, -1.0, 0.5);
-    const PointUpdate update = behaviour->update(sigma, start.data(), increment, end.data());
+    const PointUpdate update = behaviour.update(sigma, start.data(), increment, end.data());
     to_ddsdde(update.tangent, ddsdde, n);
     if (update.status == UpdateStatus::kFailed) {
       report("update failed: " + update.message, noel, npt, pnewdt, update.step_ratio);

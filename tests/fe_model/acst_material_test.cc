@@ -47,7 +47,7 @@ TEST(AcstMaterial, ConvertsSignsAndPacksTheState) {
   stress[2][2] = -150e3;
   const PointState state = material.initial_state(stress);
   ASSERT_EQ(state.internal_variables.size(), AcstMaterial::kNumInternalVariables);
-  const model::acst::State<double> model = AcstMaterial::to_model(state);
+  const model::acst::State<double> model = material.to_model(state);
   EXPECT_DOUBLE_EQ(model.stress(2, 2), 150e3);  // compression positive in the model
   EXPECT_DOUBLE_EQ(model.void_ratio, 0.8);
   EXPECT_NEAR(model.alpha.trace(), 0.0, 1e-15);
@@ -89,7 +89,7 @@ TEST(AcstMaterial, TangentMatchesFiniteDifferencesInPlasticLoading) {
   PointState end;
   ASSERT_NE(material.update(start, de, end).status, MaterialStatus::kFailed);
   const double alpha_change =
-      (AcstMaterial::to_model(end).alpha - AcstMaterial::to_model(start).alpha).norm();
+      (material.to_model(end).alpha - material.to_model(start).alpha).norm();
   EXPECT_GT(alpha_change, 1e-6) << "the increment should be plastic (alpha evolves)";
   const double error = checks::tangent_error(material, start, de, 1e-8);
   std::cout << "ACST adapter tangent vs finite differences, plastic (|d alpha| = " << alpha_change

@@ -40,7 +40,7 @@ TEST(NetworkMaterial, PacksTheStateAndStartsAtTheInitialMeanStress) {
   const PointState state = material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>());
   ASSERT_EQ(state.internal_variables.size(), NetworkMaterial::kNumInternalVariables);
   for (unsigned int i = 0; i < 3; ++i) EXPECT_NEAR(state.stress[i][i], -100e3, 1e-9);
-  const model::network::State<double> model = NetworkMaterial::to_model(state);
+  const model::network::State<double> model = material.to_model(state);
   // Lambda = 3 p (1 + e) / (E Z) for an isotropic network (sff-theory.md §4).
   EXPECT_NEAR(model.lambda, 3.0 * 100e3 * 1.58 / (150e6 * 6.7), 1e-18);
   EXPECT_NEAR(*material.fabric_invariant(state), 0.0, 1e-15);
@@ -89,7 +89,7 @@ TEST(NetworkMaterial, OneElementDrainedTriaxialIsTheMaterialPointPrediction) {
   t.e0 = 0.58;
   t.p0 = 100e3;
   const model::network::State<double> initial =
-      NetworkMaterial::to_model(material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>()));
+      material.to_model(material.initial_state(-100e3 * dealii::unit_symmetric_tensor<3>()));
   t.snapshot_axial_strain = {0.0};
   t.coordination = {initial.coordination};
   t.lambda = {initial.lambda};

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/descriptor.h"
 #include "model/parameter_field.h"
 #include "model/parameter_file.h"
 #include "model/update_status.h"
@@ -56,9 +57,9 @@ inline constexpr double kUnbounded = model::kUnbounded;
 
 using model::ParameterRange;
 
-/// One parameter of acst-model.md (model/parameter_field.h): besides its range, validate_parameters
-/// checks the coupled conditions m < c M_c and c_h e_gamma < 1; every parameter is dimensionless
-/// (unit "1": G0 multiplies p_a).
+/// One parameter of acst-model.md (model/parameter_field.h): besides its range,
+/// validate_parameters checks the coupled conditions m < c M_c and c_h e_gamma < 1; every
+/// parameter is dimensionless (unit "1": G0 multiplies p_a).
 template <typename T>
 using ParameterField = model::ParameterField<Parameters<T>, T>;
 
@@ -215,6 +216,12 @@ void write_parameters_json(const Parameters<double>& par, const std::string& pat
 void write_parameters_json(const Parameters<double>& par, const std::string& path,
                            const std::vector<ParameterAnnotation>& annotations,
                            const std::string& extra_json_object);
+
+/// The model behind the model interface (model/descriptor.h) with these parameters (validated:
+/// std::invalid_argument naming one that is not physical) and integration options, e.g. the FE
+/// material's tolerance; find_model("acst").make(...) gives it with the default options.
+std::unique_ptr<Behaviour> make_behaviour(const Parameters<double>& par,
+                                          const IntegrationOptions& options = {});
 
 /// The parameters with another scalar type (derivative parts zero).
 template <typename U, typename T>

@@ -9,8 +9,10 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <memory>
 #include <string>
 
+#include "model/descriptor.h"
 #include "model/network_model.h"
 #include "model/update_status.h"
 
@@ -38,6 +40,10 @@ struct UpdateResult {
 UpdateResult update_with_tangent(const Parameters<double>& par, const State<double>& start,
                                  const Tensor<double>& increment, double youngs_modulus,
                                  int max_substeps = kMaxUpdateSubsteps);
+
+/// The model behind the model interface (model/descriptor.h) with these parameters and the grains'
+/// E [Pa] (validated: std::invalid_argument naming a value that is not physical).
+std::unique_ptr<Behaviour> make_behaviour(const Parameters<double>& par, double youngs_modulus);
 
 /// True where the state can carry a stress: e, Z, Lambda positive and everything finite.
 template <typename M>
