@@ -52,12 +52,13 @@ void refuse_shared_runs(const std::vector<calibration::TestData>& tests,
 
 // The contact-network fit's first start: the parameter file's values (those it lacks at their
 // value_if_absent, the model before them), or the default start placed by the tests.
-calibration::network::Parameters<double> network_start(
+model::network::Parameters<double> network_start(
     const std::string& path, const std::vector<calibration::TestData>& tests) {
   namespace net = calibration::network;
   if (path.empty()) return net::default_start(tests);
   double youngs_modulus = net::kDemYoungsModulus;
-  const net::Parameters<double> start = net::read_parameters_json(path, &youngs_modulus);
+  const model::network::Parameters<double> start =
+      model::network::read_parameters_json(path, &youngs_modulus);
   if (youngs_modulus != net::kDemYoungsModulus)
     throw std::runtime_error("--start " + path + ": its youngs_modulus " +
                              std::to_string(youngs_modulus) + " Pa is not the DEM's " +

@@ -111,9 +111,11 @@ int prepare_command(const std::string& config_path, const std::string& out_path)
   return 0;
 }
 
-int triaxial_command(const std::string& config_path, const std::string& specimen_path,
-                     const std::string& out_path) {
-  const dem::RunConfig config = dem::load_run_config(config_path);
+namespace {
+
+// The triaxial test of `config` on the specimen, written to out_path.
+int run_triaxial(const dem::RunConfig& config, const std::string& specimen_path,
+                 const std::string& out_path) {
   use_threads(config);
   runfile::CheckpointExtras specimen_extras;
   dem::SimulationState state = [&] {
@@ -140,6 +142,13 @@ int triaxial_command(const std::string& config_path, const std::string& specimen
   return 0;
 }
 
+}  // namespace
+
+int triaxial_command(const std::string& config_path, const std::string& specimen_path,
+                     const std::string& out_path) {
+  return run_triaxial(dem::load_run_config(config_path), specimen_path, out_path);
+}
+
 int resume_command(const std::string& run_path) {
   runfile::RunFile file = runfile::RunFile::open(run_path, true);
   if (file.metadata().kind != "triaxial")
@@ -160,8 +169,9 @@ int resume_command(const std::string& run_path) {
 
 int dem_command(const std::string& config_path, const std::string& out_path) {
   const std::string specimen_path = out_path + ".specimen.h5";
-  prepare_and_save(dem::load_run_config(config_path), specimen_path);
-  return triaxial_command(config_path, specimen_path, out_path);
+  const dem::RunConfig config = dem::load_run_config(config_path);  // read once for both stages
+  prepare_and_save(config, specimen_path);
+  return run_triaxial(config, specimen_path, out_path);
 }
 
 int vtk_command(const std::string& run_path, const std::string& folder) {

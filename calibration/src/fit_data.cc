@@ -131,7 +131,10 @@ bool holds_lateral_stress(TestPath path) {
 }
 
 TestData read_run_file(const std::string& path) {
-  const runfile::DemTest dem = runfile::read_dem_test(path);
+  return test_data(runfile::read_dem_test(path), path);
+}
+
+TestData test_data(const runfile::DemTest& dem, const std::string& path) {
   TestPath test_path;
   try {
     test_path = parse_test_path(dem.loading_path());

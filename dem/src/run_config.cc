@@ -124,19 +124,34 @@ void check(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-}  // namespace
-
-RunConfig parse_run_config(const std::string& toml_text, const std::string& source,
-                           UnknownKeys unknown) {
-  toml::table table;
+// The TOML text as a table; throws std::invalid_argument naming the source, line and column of a
+// syntax error.
+toml::table parse_toml(const std::string& toml_text, const std::string& source) {
   try {
-    table = toml::parse(toml_text, source);
+    return toml::parse(toml_text, source);
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << source << ": TOML syntax error at line " << e.source().begin.line << ", column "
         << e.source().begin.column << ": " << e.description();
     throw std::invalid_argument(msg.str());
   }
+}
+
+RunConfig config_from_table(const toml::table& table, const std::string& toml_text,
+                            const std::string& source, UnknownKeys unknown);
+
+}  // namespace
+
+RunConfig parse_run_config(const std::string& toml_text, const std::string& source,
+                           UnknownKeys unknown) {
+  return config_from_table(parse_toml(toml_text, source), toml_text, source, unknown);
+}
+
+namespace {
+
+// The config a parsed table sets (the text is kept for the run file).
+RunConfig config_from_table(const toml::table& table, const std::string& toml_text,
+                            const std::string& source, UnknownKeys unknown) {
   RunConfig c;
   c.text = toml_text;
   std::string method = "compaction";
@@ -269,18 +284,21 @@ RunConfig parse_run_config(const std::string& toml_text, const std::string& sour
   return c;
 }
 
+}  // namespace
+
 RunConfig load_run_config(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("cannot read the config file " + path);
   std::stringstream buffer;
   buffer << in.rdbuf();
-  RunConfig config = parse_run_config(buffer.str(), path);
+  const std::string text = buffer.str();
+  const toml::table table = parse_toml(text, path);  // parsed once
   // An empty file (or one of comments only) would run every default, 1000 bodies included: more
   // likely a wrong or truncated file than a choice. The defaults are one command away.
-  if (toml::parse(buffer.str(), path).empty())
+  if (table.empty())
     throw std::invalid_argument(path + ": the config sets no key (empty or comments only); "
                                 "`sffcal config -o FILE` writes every key with its default");
-  return config;
+  return config_from_table(table, text, path, UnknownKeys::kError);
 }
 
 std::string default_run_config_text() { return kDefaultText; }

@@ -60,8 +60,8 @@ CurvePoint curve_point(double axial_strain, double volumetric_strain, double p, 
   return point;
 }
 
-DemRun read_dem_run(const std::string& path, double a_cs) {
-  const runfile::DemTest test = runfile::read_dem_test(path);
+// The DEM run as fe-check compares it, from the run file at `path` read once (runfile::DemTest).
+DemRun dem_run(const runfile::DemTest& test, const std::string& path, double a_cs) {
   if (test.loading_path() != "drained_compression")
     throw std::runtime_error(path + ": loading path " + test.loading_path() +
                              ": fe-check compares drained compression only");
@@ -220,9 +220,10 @@ FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckL
   FeCheckResult result;
   for (const std::string& path : options.dem_runs) {
     // The network's fabric invariant is a_c itself: A:n_c / a_cs with a_cs = sqrt(2/3).
-    const DemRun dem = read_dem_run(path, model::acst::kSqrtTwoThirds);
+    const runfile::DemTest run = runfile::read_dem_test(path);  // read once for both uses
+    const DemRun dem = dem_run(run, path, model::acst::kSqrtTwoThirds);
     const calibration::TestData test =
-        net::with_closing_normal_anisotropy(calibration::read_run_file(path));
+        net::with_closing_normal_anisotropy(calibration::test_data(run, path));
     const model::network::State<double> start = net::initial_state(test);
     NetworkInitialState initial;
     initial.void_ratio = start.void_ratio;
@@ -341,7 +342,8 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
   }
 
   std::vector<DemRun> dem_runs;
-  for (const std::string& path : options.dem_runs) dem_runs.push_back(read_dem_run(path, a_cs));
+  for (const std::string& path : options.dem_runs)
+    dem_runs.push_back(dem_run(runfile::read_dem_test(path), path, a_cs));
 
   std::vector<Case> cases;
   for (double p : options.pressures) {

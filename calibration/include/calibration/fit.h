@@ -20,6 +20,9 @@
 namespace ceres {
 class Problem;
 }
+namespace runfile {
+struct DemTest;
+}
 
 namespace calibration {
 
@@ -107,6 +110,8 @@ inline bool liquefied_at_row(const TestData& test, std::size_t row) {
 /// the loading path from /loading. Throws std::runtime_error naming the file and what is missing
 /// (e.g. no /analysis/sff) or a path the fit cannot follow.
 TestData read_run_file(const std::string& path);
+/// The same from a run already read (runfile::read_dem_test) from `path` (named in errors).
+TestData test_data(const runfile::DemTest& dem, const std::string& path);
 
 /// Reads the reduced CSV pair (series columns and SFF columns, with headers, as
 /// bench/reference/*_series.csv and *_sff.csv); friction and path as given.
