@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -162,11 +163,14 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
     if (statev[0] == 0.0) {
       try {
         sigma = behaviour.initial_state(start_stress, props, start.data());
-      } catch (const InvalidInput& e) {
-        const int offset = slot_offset(d.initial_inputs(), e.slot());
-        const int size = offset < 0 ? 1 : d.initial_inputs()[offset].size();
-        throw std::runtime_error(
-            offset < 0 ? e.what() : props_name(offset, size) + ": " + std::string(e.what()));
+      } catch (const InvalidInput& e) {  // named by its PROPS
+        int offset = 0;
+        for (const Slot& slot : d.initial_inputs()) {
+          if (e.slot() == slot.name)
+            throw std::runtime_error(props_name(offset, slot.size()) + ": " + e.what());
+          offset += slot.size();
+        }
+        throw;
       }
     } else {
       std::copy(statev + 1, statev + 1 + state_size, start.begin());

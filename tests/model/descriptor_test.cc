@@ -216,6 +216,14 @@ TEST(ModelInterface, ARotatedNetworkStateGivesTheRotatedStress) {
   pt.call(none, r);
   ASSERT_EQ(pt.pnewdt, 1.0) << sffcal_umat_last_message();
   EXPECT_LT((pt.stress_tensor() - r * before * r.transpose()).norm(), 1e-9 * before.norm());
+  // An initial input that is not physical is named by its PROPS: F_0 with a trace, PROPS(9..14).
+  Point bad{"CONTACT_NETWORK", props};
+  for (int i = 0; i < 3; ++i) bad.stress[i] = -1e5;
+  bad.props[8] = 0.3;
+  bad.call(none);
+  EXPECT_LE(bad.pnewdt, 0.5);
+  EXPECT_NE(std::string(sffcal_umat_last_message()).find("PROPS(9..14)"), std::string::npos)
+      << sffcal_umat_last_message();
 }
 
 // ACST carries its stress in STRESS (rotated by the FE code) and its tensors in STATEV: after a
