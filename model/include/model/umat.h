@@ -8,7 +8,7 @@
  * plane strain and axisymmetric elements (NDI = 3, NSHR = 1, NTENS = 4; eps_13 = eps_23 = 0).
  * Stresses in the units of the parameter file's reference pressure: Pa.
  *
- * PROPS (NPROPS >= 7, or >= 22 with the parameters):
+ * PROPS (NPROPS = 7, or 22 to 25 with the parameters):
  *   PROPS(1)      initial void ratio e_0
  *   PROPS(2..7)   initial model fabric F_0 (deviatoric), components 11, 22, 33, 12, 13, 23
  *   PROPS(8..22)  the 15 parameters G0, nu, M_c, c, e_gamma, lambda_c, xi, m, h0, c_h, n_b, A0,

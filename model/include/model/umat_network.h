@@ -5,7 +5,7 @@
  * libsffcal_umat.so's umat_ calls this entry for a material whose name (CMNAME) begins with
  * CONTACT_NETWORK (in any case), sffcal_umat (ACST) for any other.
  *
- * PROPS (NPROPS = 20, or >= 39 with E and the parameters), tensors in 11, 22, 33, 12, 13, 23:
+ * PROPS (NPROPS = 20, or 39 to 48 with E and the parameters), tensors in 11, 22, 33, 12, 13, 23:
  *   PROPS(1)       initial void ratio e_0
  *   PROPS(2)       initial coordination number Z_0
  *   PROPS(3..8)    initial fabric anisotropy A_0 (deviatoric)
