@@ -1,7 +1,8 @@
 // The contact-network model's stress update with its exact consistent tangent (network_model.h,
 // docs/network-model.md): RK4 substeps of the strain increment in forward-mode dual numbers seeded
-// on its six independent components. Shared by the FE adapter (fe_model::NetworkMaterial) and the
-// UMAT entry (model/umat.h), so both give the same numbers. Needs only Eigen.
+// on its six independent components. Behind the model interface (make_behaviour), so the FE
+// adapter (fe_model::NetworkMaterial) and the UMAT (model/umat_network.h) give the same numbers.
+// Needs only Eigen.
 //
 // Conventions: compression positive, stress in Pa, tensor shear components.
 #pragma once
