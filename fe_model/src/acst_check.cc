@@ -257,16 +257,9 @@ Eigen::Matrix3d fabric_from_dem_anisotropy(double a_c, double a_cs) {
   return A / a_cs;
 }
 
-std::optional<double> read_fabric_normalisation(const std::string& parameter_path) {
-  std::ifstream in(parameter_path);
-  if (!in) throw std::runtime_error("parameter file '" + parameter_path + "' cannot be opened");
-  nlohmann::json root;
-  try {
-    in >> root;
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error("parameter file '" + parameter_path + "' is not valid JSON: " +
-                             e.what());
-  }
+std::optional<double> fabric_normalisation(const model::ParameterValues& values,
+                                           const std::string& parameter_path) {
+  const nlohmann::json root = nlohmann::json::parse(values.rest);  // the reader's own dump
   auto value_of = [&](const nlohmann::json& entry, const std::string& key) -> std::optional<double> {
     double v = 0.0;
     if (entry.is_number()) {

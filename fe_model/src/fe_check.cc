@@ -199,14 +199,15 @@ void write_summary(const fs::path& out_folder, const std::vector<FeCheckRow>& ch
 // axial one), so they agree to the integration error, not to round-off: kNetworkDriverTolerance.
 constexpr double kNetworkDriverTolerance = 1e-6;
 
-FeCheckResult run_network_fe_check(const FeCheckOptions& options, const FeCheckLog& log) {
+FeCheckResult run_network_fe_check(const FeCheckOptions& options,
+                                   const model::ParameterValues& values, const FeCheckLog& log) {
   namespace net = calibration::network;
   if (options.dem_runs.empty())
     throw std::invalid_argument("the contact-network model starts from a DEM run's network (Z, "
                                 "Lambda, anisotropies): give it with --dem RUN.h5");
-  double youngs_modulus = 0.0;
+  const double youngs_modulus = values.constants.at(0);
   const model::network::Parameters<double> parameters =
-      model::network::read_parameters_json(options.parameters_path, &youngs_modulus);
+      model::network::from_array(values.parameters.data());
   const fs::path out_folder(options.output_folder);
   fs::create_directories(out_folder);
   AcstLoading loading;
@@ -314,10 +315,12 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
     throw std::invalid_argument("--void-ratio " + format_value(options.void_ratio) +
                                 " is not a void ratio the model can carry: it must be in (0, 2.97)");
 
-  const std::string model = model::acst::parameter_file_model(options.parameters_path);
+  // The parameter file, read once: the model, its values and the rest (a_cs).
+  const model::ParameterValues values = model::read_parameter_file(options.parameters_path);
+  const std::string& model = values.model;
   if (model == "contact_network") {
 #ifdef SFFCAL_FE_CHECK_NETWORK
-    return run_network_fe_check(options, log);
+    return run_network_fe_check(options, values, log);
 #else
     throw std::invalid_argument("the contact-network fe-check needs the fits' library: this "
                                 "sffcal was configured with SFFCAL_BUILD_CALIBRATION=OFF");
@@ -328,15 +331,14 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
                                 model + "' (fe-check reads \"acst\" and \"contact_network\")");
 
   // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
-  const model::acst::Parameters<double> parameters =
-      model::acst::read_parameters_json(options.parameters_path);
+  const model::acst::Parameters<double> parameters = model::acst::parameters_of(values);
   double a_cs = kDefaultAcs;
   std::string a_cs_source = "default (dense_100kPa_2000 critical state, docs/fe.md)";
   if (options.a_cs > 0.0) {
     a_cs = options.a_cs;
     a_cs_source = "--a-cs";
   } else if (const std::optional<double> from_file =
-                 read_fabric_normalisation(options.parameters_path)) {
+                 fabric_normalisation(values, options.parameters_path)) {
     a_cs = *from_file;
     a_cs_source = "parameter file";
   }

@@ -132,6 +132,12 @@ ParameterValues read_parameter_file(const std::string& path, const std::string& 
   } catch (const std::invalid_argument& e) {
     fail(path, e.what());
   }
+  Json rest = root;
+  rest.erase("model");
+  for (const ParameterInfo& c : description->constants()) rest.erase(c.name);
+  for (const ParameterInfo& p : description->parameters()) rest["parameters"].erase(p.name);
+  if (rest["parameters"].empty()) rest.erase("parameters");
+  values.rest = rest.dump();
   return values;
 }
 
@@ -178,7 +184,12 @@ std::vector<double> values_of(const Parameters<double>& par) {
 }  // namespace
 
 Parameters<double> read_parameters_json(const std::string& path) {
-  const ParameterValues values = read_parameter_file(path, "acst");
+  return parameters_of(read_parameter_file(path, "acst"));
+}
+
+Parameters<double> parameters_of(const ParameterValues& values) {
+  if (values.model != "acst")
+    throw std::runtime_error("the parameters of model '" + values.model + "', not ACST's");
   Parameters<double> par;
   for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
     par.*kParameterFields<double>[k].member = values.parameters[k];

@@ -265,7 +265,8 @@ TEST(AcstCheck, ExampleParameterFileAndFabricNormalisation) {
   EXPECT_DOUBLE_EQ(par.G0, 125.0);
   EXPECT_DOUBLE_EQ(par.M_c, 1.25);
   EXPECT_DOUBLE_EQ(par.k_F, 5.0);
-  EXPECT_FALSE(read_fabric_normalisation(kExampleParameters).has_value());
+  const std::string example = kExampleParameters;
+  EXPECT_FALSE(fabric_normalisation(model::read_parameter_file(example), example).has_value());
 
   const std::string path = "acst_check_test_" + std::to_string(::getpid()) + ".json";
   std::ifstream in(kExampleParameters);
@@ -276,12 +277,13 @@ TEST(AcstCheck, ExampleParameterFileAndFabricNormalisation) {
     out << text.substr(0, brace + 1) << "\n  \"a_cs\": {\"value\": 0.9, \"unit\": \"1\"},"
         << text.substr(brace + 1);
   }
-  EXPECT_DOUBLE_EQ(read_fabric_normalisation(path).value_or(0.0), 0.9);
+  EXPECT_DOUBLE_EQ(fabric_normalisation(model::read_parameter_file(path), path).value_or(0.0),
+                   0.9);
   {
     std::ofstream out(path);
     out << text.substr(0, brace + 1) << "\n  \"a_cs\": -1," << text.substr(brace + 1);
   }
-  EXPECT_THROW(read_fabric_normalisation(path), std::runtime_error);
+  EXPECT_THROW(fabric_normalisation(model::read_parameter_file(path), path), std::runtime_error);
   std::remove(path.c_str());
 }
 

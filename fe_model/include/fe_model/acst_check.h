@@ -137,11 +137,13 @@ Eigen::Matrix3d fabric_from_dem_anisotropy(double a_c, double a_cs);
 /// axial strain 0.2 .. 0.4; ||A|| = sqrt(2/3) t(A) for an axisymmetric A).
 inline constexpr double kDefaultAcs = 0.827;
 
-/// a_cs from a parameter file, if it has one: a top-level key "a_cs" or "parameters.a_cs", either a
-/// number or an object with a numeric "value". The model parameters themselves are read with
-/// model::acst::read_parameters_json only. Throws std::runtime_error for an unreadable file or a
-/// non-positive value.
-std::optional<double> read_fabric_normalisation(const std::string& parameter_path);
+/// a_cs from a parameter file already read (model::read_parameter_file), if it has one: a
+/// top-level key "a_cs", "fabric_normalisation.a_cs" (as `sffcal calibrate` writes it) or
+/// "parameters.a_cs", either a number or an object with a numeric "value" (read from
+/// ParameterValues::rest, what the file holds besides the model's values). Throws
+/// std::runtime_error naming `parameter_path` for a value that is not a positive number.
+std::optional<double> fabric_normalisation(const model::ParameterValues& values,
+                                           const std::string& parameter_path);
 
 /// Writes a curve as CSV: axial_strain, volumetric_strain, p, q, eta, void_ratio,
 /// fabric_invariant, newton_iterations, cuts, status (compression positive, Pa). Throws

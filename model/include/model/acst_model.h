@@ -205,6 +205,9 @@ bool is_admissible_void_ratio(double e);
 /// The ACST parameter file (model/parameter_file.h, docs/model.md); throws std::runtime_error
 /// naming the missing/invalid key.
 Parameters<double> read_parameters_json(const std::string& path);
+/// The parameters of an ACST file already read (read_parameter_file); throws std::runtime_error
+/// if it is another model's.
+Parameters<double> parameters_of(const ParameterValues& values);
 using model::parameter_file_model;
 using model::ParameterAnnotation;
 /// Writes the layout read_parameters_json reads (each parameter with value and unit).

@@ -16,6 +16,11 @@ struct ParameterValues {
   std::string model;               ///< the registered name
   std::vector<double> constants;   ///< ModelDescription::constants()
   std::vector<double> parameters;  ///< ModelDescription::parameters()
+  /// What the file holds besides the model's values, as one JSON object text: its other top-level
+  /// members (e.g. a fit's record) and, under "parameters", members of "parameters" that are not
+  /// the model's; "{}" for none. Filled by the reader; the writer takes its extra members
+  /// separately.
+  std::string rest = "{}";
 };
 
 /// What a calibration knows about one parameter, written next to its value (the reader ignores it).
