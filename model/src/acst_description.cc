@@ -9,6 +9,7 @@
 
 #include "model/acst_model.h"
 #include "model/descriptor.h"
+#include "parameter_vector.h"
 
 namespace model {
 
@@ -35,10 +36,7 @@ const std::vector<Slot> kState = {
 constexpr int kVoidRatio = 0, kAlpha = 1, kAlphaIn = 7, kFabric = 13, kStatus = 19, kSubsteps = 20;
 
 Parameters<double> typed(const std::vector<double>& values) {
-  Parameters<double> par;
-  for (std::size_t k = 0; k < acst::kParameterFields<double>.size(); ++k)
-    par.*acst::kParameterFields<double>[k].member = values[k];
-  return par;
+  return set_from_table_order<Parameters<double>>(acst::kParameterFields<double>, values);
 }
 
 class AcstBehaviour final : public Behaviour {
@@ -171,9 +169,8 @@ const ModelDescription& acst_description() {
 
 std::unique_ptr<Behaviour> acst::make_behaviour(const acst::Parameters<double>& par,
                                                 const acst::IntegrationOptions& options) {
-  std::vector<double> values;
-  for (const auto& f : acst::kParameterFields<double>) values.push_back(par.*f.member);
-  acst_description().validate({acst::kAtmosphericPressure}, values);
+  acst_description().validate({acst::kAtmosphericPressure},
+                              values_in_table_order(acst::kParameterFields<double>, par));
   return std::make_unique<AcstBehaviour>(acst_description(), par, options);
 }
 

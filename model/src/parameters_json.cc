@@ -18,6 +18,7 @@
 #include "model/descriptor.h"
 #include "model/network_model.h"
 #include "model/parameter_file.h"
+#include "parameter_vector.h"
 
 namespace model {
 
@@ -173,16 +174,6 @@ void write_parameter_file(const std::string& path, const ParameterValues& values
 
 namespace acst {
 
-namespace {
-
-std::vector<double> values_of(const Parameters<double>& par) {
-  std::vector<double> x;
-  for (const ParameterField<double>& f : kParameterFields<double>) x.push_back(par.*f.member);
-  return x;
-}
-
-}  // namespace
-
 Parameters<double> read_parameters_json(const std::string& path) {
   return parameters_of(read_parameter_file(path, "acst"));
 }
@@ -190,10 +181,7 @@ Parameters<double> read_parameters_json(const std::string& path) {
 Parameters<double> parameters_of(const ParameterValues& values) {
   if (values.model != "acst")
     throw std::runtime_error("the parameters of model '" + values.model + "', not ACST's");
-  Parameters<double> par;
-  for (std::size_t k = 0; k < kParameterFields<double>.size(); ++k)
-    par.*kParameterFields<double>[k].member = values.parameters[k];
-  return par;
+  return set_from_table_order<Parameters<double>>(kParameterFields<double>, values.parameters);
 }
 
 void write_parameters_json(const Parameters<double>& par, const std::string& path) {
@@ -204,8 +192,9 @@ void write_parameters_json(const Parameters<double>& par, const std::string& pat
                            const std::vector<ParameterAnnotation>& annotations,
                            const std::string& extra_json_object) {
   validate_parameters(par);  // std::runtime_error naming the parameter, as before the file
-  write_parameter_file(path, {"acst", {kAtmosphericPressure}, values_of(par)}, annotations,
-                       extra_json_object);
+  write_parameter_file(
+      path, {"acst", {kAtmosphericPressure}, values_in_table_order(kParameterFields<double>, par)},
+      annotations, extra_json_object);
 }
 
 }  // namespace acst

@@ -2,8 +2,8 @@
 // description), the conversions between the UMAT's component order and 3x3 tensors, the check of
 // the element layout, and the report of a failed update through PNEWDT and
 // sffcal_umat_last_message().
-#ifndef SFFCAL_CALIBRATION_UMAT_COMMON_H_
-#define SFFCAL_CALIBRATION_UMAT_COMMON_H_
+#ifndef SFFCAL_MODEL_UMAT_COMMON_H_
+#define SFFCAL_MODEL_UMAT_COMMON_H_
 
 #include <Eigen/Core>
 
@@ -63,4 +63,4 @@ void report(const std::string& message, const int* noel, const int* npt, double*
 
 }  // namespace model::umat_detail
 
-#endif  // SFFCAL_CALIBRATION_UMAT_COMMON_H_
+#endif  // SFFCAL_MODEL_UMAT_COMMON_H_

@@ -1,5 +1,5 @@
 // Element-level checks of the ACST model through the deal.II-free facade fe_model/acst_check.h
-// (issue 6): one homogeneous Q1 element reproduces calibration's material-point driver to
+// (issue 6): one homogeneous Q1 element reproduces the material-point driver to
 // round-off at 100, 200 and 300 kPa with Newton converging quadratically (residual ratios
 // recorded), the 2x2x4 mesh gives the same answer, a ten times larger strain increment cuts (or
 // fails clearly, never NaN), near-zero confinement runs or is refused by name, and the helpers of

@@ -1,6 +1,7 @@
 // Element-level checks of the ACST model behind a deal.II-free interface (issue 6): the same
-// drained triaxial compression run by calibration's material-point driver, by one Q1 hexahedron
-// and by a small mesh, the comparison of those curves, and their comparison with a DEM curve.
+// drained triaxial compression run by the material-point driver (model/material_point.h), by one
+// Q1 hexahedron and by a small mesh, the comparison of those curves, and their comparison with a
+// DEM curve.
 //
 // This header includes no deal.II header (only Eigen and model/acst_model.h), so light
 // translation units such as the `sffcal fe-check` command can use fe_model without deal.II's

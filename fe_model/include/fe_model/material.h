@@ -2,7 +2,7 @@
 //
 // Sign convention: everything that crosses this interface is in deal.II's convention, tension
 // positive (stress, strain, strain increment). A material whose own convention is compression
-// positive (the ACST model in calibration/) converts inside its adapter. The triaxial driver
+// positive (the models of model/) converts inside its adapter. The triaxial driver
 // converts its *output* to compression positive (soil mechanics); see docs/fe.md.
 //
 // Design (after MGIS): the state at the start of a step (`start`, MGIS s0) is read only; the

@@ -38,8 +38,8 @@
  * is reported the same way, with a message on stderr and in sffcal_umat_last_message().
  * SSE, SPD, SCD, RPL and the temperature terms are not touched.
  */
-#ifndef SFFCAL_CALIBRATION_UMAT_H_
-#define SFFCAL_CALIBRATION_UMAT_H_
+#ifndef SFFCAL_MODEL_UMAT_H_
+#define SFFCAL_MODEL_UMAT_H_
 
 #include <stddef.h>
 
@@ -83,4 +83,4 @@ const char* sffcal_umat_last_message(void);
 }
 #endif
 
-#endif /* SFFCAL_CALIBRATION_UMAT_H_ */
+#endif /* SFFCAL_MODEL_UMAT_H_ */

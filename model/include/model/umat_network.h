@@ -59,8 +59,8 @@
  * most 0.5, with a message on stderr and in sffcal_umat_last_message(). The layout is the
  * network's description (model/descriptor.h) through the body every model's UMAT shares.
  */
-#ifndef SFFCAL_CALIBRATION_UMAT_NETWORK_H_
-#define SFFCAL_CALIBRATION_UMAT_NETWORK_H_
+#ifndef SFFCAL_MODEL_UMAT_NETWORK_H_
+#define SFFCAL_MODEL_UMAT_NETWORK_H_
 
 #include <stddef.h>
 
@@ -113,4 +113,4 @@ int sffcal_umat_is_network_material(const char* cmname, size_t cmname_length);
 }
 #endif
 
-#endif /* SFFCAL_CALIBRATION_UMAT_NETWORK_H_ */
+#endif /* SFFCAL_MODEL_UMAT_NETWORK_H_ */
