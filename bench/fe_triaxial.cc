@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     const model::acst::Parameters<double> parameters =
         model::acst::read_parameters_json(parameters_path);
     fe_model::AcstSpecimen specimen;  // 100 kPa, e_0 = 0.8, isotropic
-    fe_model::AcstLoading loading;
+    fe_model::TriaxialLoading loading;
     loading.axial_strain_end = 0.3;
     loading.n_steps = steps;
     std::printf("fe_triaxial: %s, sigma_3 = 100 kPa, e_0 = %.2f, to axial strain %.2f in %u "
@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     print_row(renamed, steps, 8);
     fe_model::Curve meshed;
     if (mesh) {
-      fe_model::AcstMeshOptions options;
+      fe_model::TriaxialMeshOptions options;
       options.cells_x = options.cells_y = 2;
       options.cells_z = 4;
       meshed = fe_model::run_acst_fe_triaxial(parameters, specimen, loading, options);

@@ -12,6 +12,7 @@ install(FILES
   model/include/model/update_status.h
   model/include/model/parameter_file.h
   model/include/model/descriptor.h
+  model/include/model/point_driver.h
   model/include/model/acst_model_impl.h
   model/include/model/acst_implicit.h
   model/include/model/umat.h

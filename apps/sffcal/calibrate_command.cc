@@ -11,8 +11,10 @@
 #include <CLI/CLI.hpp>
 #include <omp.h>
 
+#include "calibration/any_model_fit.h"
 #include "calibration/fit.h"
 #include "calibration/network_fit.h"
+#include "model/descriptor.h"
 
 namespace sffcal {
 namespace {
@@ -81,7 +83,7 @@ int calibrate_network(const std::vector<std::string>& run_paths,
   std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
   std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
   refuse_shared_runs(tests, held_out);
-  net::check_unique_names(tests, held_out);
+  calibration::check_unique_names(tests, held_out);
   for (auto* list : {&tests, &held_out})
     for (calibration::TestData& t : *list) {
       net::initial_state(t);  // names a test without Z
@@ -105,13 +107,44 @@ int calibrate_network(const std::vector<std::string>& run_paths,
   return 0;
 }
 
+// Any other registered model, fitted over its description (calibration/any_model_fit.h).
+int calibrate_any_model(const std::vector<std::string>& run_paths,
+                        const CalibrateCommandOptions& options, const std::string& command_line) {
+  const model::ModelDescription& description = model::find_model(options.model);
+  calibration::AnyModelFitOptions fit;
+  fit.max_points = options.max_points;
+  const std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
+  const std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
+  refuse_shared_runs(tests, held_out);
+  calibration::check_unique_names(tests, held_out);
+  const auto start = std::chrono::steady_clock::now();
+  const calibration::AnyModelFitResult result =
+      calibration::fit_any_model(description, tests, held_out, fit);
+  if (options.verbose) std::printf("%s\n", result.termination.c_str());
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string summary = calibration::write_any_model_fit_outputs(
+      options.output_folder, description, tests, held_out, result, fit, SFFCAL_VERSION,
+      command_line);
+  std::printf("\n%s\ncalibrated in %.1f s; outputs in %s\n", summary.c_str(), seconds,
+              options.output_folder.c_str());
+  return result.usable ? 0 : 1;
+}
+
 }  // namespace
+
+FitKind fit_kind(const std::string& model) {
+  if (model == "acst") return FitKind::kAcst;
+  if (model == "network" || model == "contact_network") return FitKind::kNetwork;
+  model::find_model(model);  // throws, listing the registered names
+  return FitKind::kAnyModel;
+}
 
 int calibrate_command(const std::vector<std::string>& run_paths,
                       const CalibrateCommandOptions& options, const std::string& command_line) {
-  if (options.model == "network") return calibrate_network(run_paths, options, command_line);
-  if (options.model != "acst")
-    throw std::invalid_argument("--model " + options.model + ": acst or network");
+  const FitKind kind = fit_kind(options.model);
+  if (kind == FitKind::kNetwork) return calibrate_network(run_paths, options, command_line);
+  if (kind == FitKind::kAnyModel) return calibrate_any_model(run_paths, options, command_line);
   if (!options.held_parameters.empty())
     throw std::invalid_argument("--hold applies to --model network (ACST: --range)");
   if (options.predicted_only)
@@ -148,11 +181,20 @@ int calibrate_command(const std::vector<std::string>& run_paths,
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options) {
   calibrate
       .add_option("--model", options.model,
-                  "acst: the ACST model's staged fit; network: the contact-network model "
-                  "(docs/network-model.md; its runs need Z, Lambda and a_t in /analysis/sff; "
-                  "it reads --starts, --seed, --threads, --hold-out, --hold, --predicted-only, "
-                  "--start, -v)")
-      ->check(CLI::IsMember({"acst", "network"}))
+                  "acst: the ACST model's staged fit; network (or contact_network): the "
+                  "contact-network model (docs/network-model.md; its runs need Z, Lambda and a_t "
+                  "in /analysis/sff; it reads --starts, --seed, --threads, --hold-out, --hold, "
+                  "--predicted-only, --start, -v); any other registered model, e.g. "
+                  "linear_elastic: fitted over its description to drained compression runs "
+                  "(docs/model-interface.md; it reads --hold-out, --points, -v)")
+      ->check([](const std::string& name) {
+        try {
+          fit_kind(name);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      })
       ->capture_default_str();
   calibrate
       .add_option("--threads", options.threads,

@@ -1,6 +1,7 @@
 // The calibrate subcommand: staged and joint Ceres fits of the ACST model to DEM run files
-// (docs/calibration.md), or the two-stage fit of the contact-network model (--model network,
-// docs/network-model.md).
+// (docs/calibration.md), the two-stage fit of the contact-network model (--model network,
+// docs/network-model.md), or the fit of any other registered model over its description
+// (--model NAME, calibration/any_model_fit.h).
 #pragma once
 
 #include <cstdint>
@@ -14,7 +15,7 @@ class App;
 namespace sffcal {
 
 struct CalibrateCommandOptions {
-  std::string model = "acst";    ///< acst | network
+  std::string model = "acst";    ///< acst | network (or contact_network) | any registered model
   std::string output_folder;     ///< parameters.json, <test>_curves.csv, summary.md, ...
   std::string stages = "all";    ///< all | csl | elastic | fabric | plastic | joint
   int starts = 3;                ///< starts of the plastic and joint stages
@@ -39,9 +40,19 @@ struct CalibrateCommandOptions {
   std::vector<std::string> ranges;
 };
 
+/// Which fit --model chooses: ACST's, the contact-network model's, or the fit of any other
+/// registered model. Throws std::invalid_argument listing the registered names for an unknown one.
+enum class FitKind { kAcst, kNetwork, kAnyModel };
+FitKind fit_kind(const std::string& model);
+
 /// The options that only the ACST fit reads: refused with --model network.
 inline const char* const kAcstOnlyOptions[] = {"--stages", "--loss", "--points",
                                                "--max-strain-step", "--range"};
+/// The options that the fit of any other model does not read (it reads -o, --hold-out, --points
+/// and -v): refused with such a model.
+inline const char* const kNotReadByAnyModelFit[] = {
+    "--stages", "--loss",  "--max-strain-step", "--range",          "--starts",
+    "--seed",   "--hold",  "--predicted-only",  "--start",          "--threads"};
 
 /// Adds --model, --threads, --hold-out, --hold, --predicted-only, --start and --range to the
 /// calibrate subcommand.

@@ -72,12 +72,14 @@ int main(int argc, char** argv) {
 #ifdef SFFCAL_HAVE_FE_CHECK
   sffcal::FeCheckOptions fe_check_options;
   CLI::App* fe_check = app.add_subcommand(
-      "fe-check", "Element-level drained triaxial checks of the ACST or contact-network model: "
+      "fe-check", "Element-level drained triaxial checks of any registered model (ACST, the "
+                  "contact-network model, linear elasticity): "
                   "material-point driver, one Q1 hexahedron and a 2x2x4 mesh, against each other "
                   "and against DEM runs (docs/fe.md; plot with scripts/plot_fe_check.py)");
   fe_check->add_option("--parameters", fe_check_options.parameters_path,
-                       "parameter file (calibration JSON: ACST, or the contact-network model, whose "
-                       "cases are the --dem runs' networks)")
+                       "parameter file of any registered model (ACST; the contact-network model, "
+                       "whose cases are the --dem runs' networks; any other, driven through the "
+                       "model interface)")
       ->required()
       ->check(CLI::ExistingFile);
   fe_check->add_option("--dem", fe_check_options.dem_runs,
@@ -99,10 +101,10 @@ int main(int argc, char** argv) {
   fe_check->add_option("-o,--output", fe_check_options.output_folder, "output folder")
       ->capture_default_str();
   fe_check->add_option("--model-tol", fe_check_options.integration_tolerance,
-                       "substep error tolerance of the model, driver and FE alike (0: one step per increment)")
+                       "ACST: substep error tolerance of the model, driver and FE alike (0: one step per increment)")
       ->capture_default_str();
   fe_check->add_option("--a-cs", fe_check_options.a_cs,
-                       "DEM fabric normalisation ||A|| at critical state (F = A_DEM/a_cs); "
+                       "ACST: DEM fabric normalisation ||A|| at critical state (F = A_DEM/a_cs); "
                        "default: the parameter file's a_cs, else 0.827");
   fe_check->add_option("--dem-eta-tol", fe_check_options.dem_eta_tolerance,
                        "pass tolerance of the RMS q/p error against DEM")
@@ -123,7 +125,8 @@ int main(int argc, char** argv) {
                    "evolution, hardening/dilatancy, then all tests jointly (Ceres); also the SFF "
                    "strength relation (docs/calibration.md; plot with scripts/plot_calibration.py). "
                    "--model network fits the contact-network model instead "
-                   "(docs/network-model.md; plot with scripts/plot_network.py)");
+                   "(docs/network-model.md; plot with scripts/plot_network.py), --model NAME any "
+                   "other registered model over its description (docs/model-interface.md)");
   calibrate->add_option("runs", calibrate_runs, "run files with an /analysis/sff table")
       ->required()
       ->check(CLI::ExistingFile);
@@ -195,11 +198,18 @@ int main(int argc, char** argv) {
     if (calibrate->parsed()) {
       std::string command_line;
       for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
-      if (calibrate_options.model == "network")
+      const sffcal::FitKind kind = sffcal::fit_kind(calibrate_options.model);
+      if (kind == sffcal::FitKind::kNetwork)
         for (const char* name : sffcal::kAcstOnlyOptions)
           if (calibrate->count(name) > 0)
             throw std::invalid_argument(std::string(name) +
                                         " applies to the ACST fit only, not to --model network");
+      if (kind == sffcal::FitKind::kAnyModel)
+        for (const char* name : sffcal::kNotReadByAnyModelFit)
+          if (calibrate->count(name) > 0)
+            throw std::invalid_argument(std::string(name) + " does not apply to --model " +
+                                        calibrate_options.model + " (its fit reads -o, "
+                                        "--hold-out, --points and -v)");
       sffcal::check_output_folder(calibrate_options.output_folder);
       return sffcal::calibrate_command(calibrate_runs, calibrate_options, command_line);
     }

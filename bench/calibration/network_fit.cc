@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
                                         held_tests = bench::read_reference_tests(held);
     for (auto* list : {&fit_tests, &held_tests})
       for (calibration::TestData& t : *list) t = net::with_closing_normal_anisotropy(std::move(t));
-    net::check_unique_names(fit_tests, held_tests);
+    calibration::check_unique_names(fit_tests, held_tests);
     options.progress = [](const std::string& line) {
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);

@@ -3,13 +3,15 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "calibration/fit.h"
+#include "calibration/test_data.h"
+#include "model/acst_model.h"
 #include "runfile/dem_test.h"
 
 namespace calibration {
@@ -225,8 +227,18 @@ void validate_test_data(const TestData& t) {
   for (const auto& [name, values] : network)
     if (!values->empty()) check_snapshots(name, *values);
   if (!(t.p0 > 0.0)) fail("initial p must be > 0 Pa");
-  if (!is_admissible_void_ratio(t.e0)) fail("initial void ratio must lie in (0, 2.97)");
+  if (!model::acst::is_admissible_void_ratio(t.e0)) fail("initial void ratio must lie in (0, 2.97)");
   if (!(t.friction >= 0.0)) fail("friction must be >= 0");
+}
+
+void check_unique_names(const std::vector<TestData>& fitted,
+                        const std::vector<TestData>& held_back) {
+  std::set<std::string> names;
+  for (const auto* list : {&fitted, &held_back})
+    for (const TestData& t : *list)
+      if (!names.insert(t.name).second)
+        throw std::runtime_error("two tests are named '" + t.name +
+                                 "': their outputs would overwrite each other");
 }
 
 }  // namespace calibration

@@ -17,16 +17,22 @@
 #include <utility>
 
 #include "model/network_update.h"
-#include "sff/sff_equation.h"
 
 namespace calibration::network {
 namespace {
 
-double value(double x) { return x; }
-template <int N>
-double value(const ceres::Jet<double, N>& x) {
-  return x.a;
-}
+using model::network::admissible_values;
+using model::network::cast_state;
+using model::network::checked_substeps;
+using model::network::diagonal_state;
+using model::network::drained_increment;
+using model::network::Lateral;
+using model::network::parameter_values;
+using model::network::PathNode;
+using model::network::PathState;
+using model::network::state_values;
+using model::network::strain_increment;
+using model::network::value_of;
 
 // Whether a residual is finite, its derivatives too (ceres::isfinite of a Jet looks at its value
 // only).
@@ -36,61 +42,8 @@ bool finite(const ceres::Jet<double, N>& x) {
   return std::isfinite(x.a) && x.v.allFinite();
 }
 
-template <typename T>
-Parameters<double> values(const Parameters<T>& par) {
-  auto in = to_array(par);
-  std::array<double, kNumParameters> out;
-  for (int i = 0; i < kNumParameters; ++i) out[i] = value(in[i]);
-  return from_array(out.data());
-}
-
-// The state along a test's path: the tests are triaxial about z from an axisymmetric start, so
-// every tensor of the state stays diagonal (network_tensor.h), and the fit integrates the laws on
-// the diagonals alone: a third of the work of the full tensors, the same numbers to rounding.
-template <typename T>
-using PathState = State<T, DiagonalTensor<T>>;
-
-// Applies f to every scalar of a state (e, Z, Lambda and the tensors' components).
-template <typename R, typename S, typename F>
-PathState<R> map_state(const PathState<S>& s, F f) {
-  return {f(s.void_ratio), f(s.coordination), f(s.lambda), map_components<R>(s.fabric, f),
-          map_components<R>(s.normal, f), map_components<R>(s.tangential, f),
-          map_components<R>(s.inherent, f)};
-}
-
-template <typename T>
-PathState<T> cast(const PathState<double>& s) {
-  return map_state<T>(s, [](double x) { return T(x); });
-}
-
-template <typename T>
-PathState<double> state_values(const PathState<T>& s) {
-  return map_state<double>(s, [](const T& x) { return value(x); });
-}
-
-// network::admissible (network_update.h) of a state's values, for any scalar type.
-template <typename T>
-bool admissible_values(const PathState<T>& s) {
-  return network::admissible(state_values(s));
-}
-
 // The diagonal of a test's initial state (initial_state: axisymmetric about z, so nothing else).
-PathState<double> path_start(const TestData& t) {
-  const State<double> s = initial_state(t);
-  auto diagonal = [](const Tensor<double>& x) {
-    return DiagonalTensor<double>{{x(0, 0), x(1, 1), x(2, 2)}};
-  };
-  return {s.void_ratio,          s.coordination,     s.lambda,
-          diagonal(s.fabric), diagonal(s.normal), diagonal(s.tangential),
-          diagonal(s.inherent)};
-}
-
-/// One node of a test's path: the DEM's axial and volumetric strain there and which row and
-/// snapshot it is.
-struct Node {
-  double axial, volumetric;
-  int row, snapshot;
-};
+PathState<double> path_start(const TestData& t) { return diagonal_state(initial_state(t)); }
 
 // The DEM's volumetric strain at an axial strain, linear between its rows.
 double volumetric_at(const TestData& t, double axial) {
@@ -104,9 +57,9 @@ double volumetric_at(const TestData& t, double axial) {
 
 // Rows and snapshots merged in the path's direction; a snapshot within 1e-9 of a row shares its
 // node; snapshots past the last row are left out.
-std::vector<Node> path_nodes(const TestData& t) {
+std::vector<PathNode> path_nodes(const TestData& t) {
   const double direction = axial_direction(t.path);
-  std::vector<Node> nodes;
+  std::vector<PathNode> nodes;
   std::size_t s = 0;
   for (std::size_t r = 0; r < t.axial_strain.size(); ++r) {
     const double a = t.axial_strain[r];
@@ -128,130 +81,6 @@ std::vector<Node> path_nodes(const TestData& t) {
   return nodes;
 }
 
-template <typename T>
-DiagonalTensor<T> strain_increment(const T& axial, const T& lateral) {
-  return {{lateral, lateral, axial}};
-}
-
-void record(Curve& c, const PathState<double>& s, double axial, double volumetric,
-            const Node& node) {
-  const DiagonalTensor<double> sigma = stress(s, kDemYoungsModulus);
-  const double p = trace(sigma) / 3.0;
-  const double q = triaxial_part(sigma);
-  c.axial_strain.push_back(axial);
-  c.volumetric_strain.push_back(volumetric);
-  c.void_ratio.push_back(s.void_ratio);
-  c.p.push_back(p);
-  c.q.push_back(q);
-  c.eta.push_back(q / p);
-  c.lateral_stress.push_back(lateral_component(sigma));
-  c.coordination.push_back(s.coordination);
-  c.lambda.push_back(s.lambda);
-  c.a_c.push_back(triaxial_part(s.fabric));
-  c.a_n.push_back(triaxial_part(s.normal));
-  c.a_t.push_back(triaxial_part(s.tangential));
-  c.row.push_back(node.row);
-  c.snapshot.push_back(node.snapshot);
-}
-
-template <typename Dual>
-Parameters<Dual> lift_parameters(const Parameters<double>& par) {
-  const auto x = to_array(par);
-  std::array<Dual, kNumParameters> y;
-  for (int i = 0; i < kNumParameters; ++i) y[i] = Dual(x[i]);
-  return from_array(y.data());
-}
-
-// The substeps of an increment, or 0 where it would need more than options.max_substeps: rates
-// that fast (a start far off in the fit, exp(n_r xi) large) make the path unusable, not slow.
-int checked_substeps(const Parameters<double>& par, const PathState<double>& start,
-                     double strain_norm, const FitOptions& options) {
-  const int n = substeps_for(par, start, strain_norm, options.substep_size);
-  return n > options.max_substeps ? 0 : n;
-}
-
-// Substeps of a drained increment, fixed for it (from the axial strain and a lateral one of half
-// its size), so that the Newton iterates on one smooth function; 0 as checked_substeps.
-int drained_substeps(const Parameters<double>& par, const PathState<double>& start, double da,
-                     const FitOptions& options) {
-  return checked_substeps(par, start, std::abs(da) * std::sqrt(1.5), options);
-}
-
-std::string too_stiff_message(double axial, const FitOptions& options) {
-  return "the increment to axial strain " + std::to_string(axial) + " needs more than " +
-         std::to_string(options.max_substeps) + " RK4 substeps (rates too fast for the step)";
-}
-
-// Solves one drained increment: the lateral strain increment that brings sigma_xx to `target`,
-// by Newton with the derivative from a one-component Jet. Returns false if it does not converge.
-bool drained_increment(const Parameters<double>& par, const PathState<double>& start, double da,
-                       double target, double& lateral, PathState<double>& end,
-                       const FitOptions& options) {
-  using Dual = ceres::Jet<double, 1>;
-  const Parameters<Dual> par_dual = lift_parameters<Dual>(par);
-  const PathState<Dual> s0 = cast<Dual>(start);
-  const int substeps = drained_substeps(par, start, da, options);
-  if (substeps == 0) return false;
-  for (int it = 0; it < 50; ++it) {
-    const PathState<Dual> s = integrate(par_dual, s0,
-                                        strain_increment(Dual(da), Dual(lateral, 0)), substeps);
-    if (!admissible_values(s)) return false;
-    const Dual g = lateral_component(stress(s, kDemYoungsModulus)) / target - Dual(1.0);
-    if (std::abs(g.a) < 1e-11) {
-      end = integrate(par, start, strain_increment(da, lateral), substeps);
-      return true;
-    }
-    if (!(std::abs(g.v[0]) > 0.0)) return false;
-    double step = -g.a / g.v[0];
-    const double cap = 2.0 * std::abs(da) + 1e-12;  // no wild first steps
-    step = std::clamp(step, -cap, cap);
-    lateral += step;
-  }
-  return false;
-}
-
-// The same with parameter derivatives (T a Jet of N): the lateral strain increment solved in doubles,
-// its derivatives from the implicit function theorem, dx/dtheta = -g_theta / g_x, with g and the
-// end state evaluated once in Jets of N + 1 (the last component seeded on x).
-template <int N>
-bool drained_increment(const Parameters<ceres::Jet<double, N>>& par,
-                       const PathState<ceres::Jet<double, N>>& start, double da, double target,
-                       ceres::Jet<double, N>& lateral, PathState<ceres::Jet<double, N>>& end,
-                       const FitOptions& options) {
-  using J = ceres::Jet<double, N>;
-  using Ext = ceres::Jet<double, N + 1>;
-  const Parameters<double> par_values = values(par);
-  double x = value(lateral);
-  PathState<double> end_values;
-  const PathState<double> start_values = state_values(start);
-  if (!drained_increment(par_values, start_values, da, target, x, end_values, options))
-    return false;
-  auto extend = [](const J& y) {
-    Ext r(y.a);
-    for (int i = 0; i < N; ++i) r.v[i] = y.v[i];
-    return r;
-  };
-  std::array<Ext, kNumParameters> par_ext;
-  const auto par_jets = to_array(par);
-  for (int i = 0; i < kNumParameters; ++i) par_ext[i] = extend(par_jets[i]);
-  const PathState<Ext> s = integrate(from_array(par_ext.data()), map_state<Ext>(start, extend),
-                                     strain_increment(Ext(da), Ext(x, N)),
-                                     drained_substeps(par_values, start_values, da, options));
-  const Ext g = lateral_component(stress(s, kDemYoungsModulus)) / target;
-  if (!(std::abs(g.v[N]) > 0.0)) return false;
-  std::array<double, N> dx;
-  for (int i = 0; i < N; ++i) dx[i] = -g.v[i] / g.v[N];
-  auto total = [&](const Ext& y) {
-    J r(y.a);
-    for (int i = 0; i < N; ++i) r.v[i] = y.v[i] + y.v[N] * dx[i];
-    return r;
-  };
-  end = map_state<J>(s, total);
-  lateral = J(x);
-  for (int i = 0; i < N; ++i) lateral.v[i] = dx[i];
-  return true;
-}
-
 // Residuals of one test (the fit's objective), per node after the first: at a row eta and a
 // residual of the path, at a snapshot the five micro variables. Along the DEM's strain path
 // (predicted = false) the path residual is the model's lateral stress against its initial value
@@ -259,7 +88,7 @@ bool drained_increment(const Parameters<ceres::Jet<double, N>>& par,
 // held) it is the volumetric strain against the DEM's.
 struct PathObjective {
   const TestData* test;
-  std::vector<Node> nodes;
+  std::vector<PathNode> nodes;
   PathState<double> start;
   FitOptions options;
   bool predicted = false;
@@ -279,9 +108,9 @@ struct PathObjective {
   template <typename T>
   bool evaluate(const Parameters<T>& par, T* residual) const {
     const TestData& t = *test;
-    const Parameters<double> par_values = values(par);
+    const Parameters<double> par_values = parameter_values(par);
     const bool drained = holds_lateral_stress(t.path);
-    PathState<T> s = cast<T>(start);
+    PathState<T> s = cast_state<T>(start);
     const DiagonalTensor<T> sigma0 = stress(s, kDemYoungsModulus);
     const T lateral0 = lateral_component(sigma0), p0 = trace(sigma0) / T(3.0);
     T volumetric(0.0);
@@ -292,8 +121,10 @@ struct PathObjective {
       if (predicted && drained) {
         T lateral(lateral_ratio * da);
         PathState<T> end;
-        if (!drained_increment(par, s, da, value(lateral0), lateral, end, options)) return false;
-        lateral_ratio = value(lateral) / da;
+        if (!drained_increment(par, s, da, value_of(lateral0), kDemYoungsModulus, lateral, end,
+                               options))
+          return false;
+        lateral_ratio = value_of(lateral) / da;
         s = end;
         volumetric += T(da) + T(2.0) * lateral;
       } else {
@@ -344,115 +175,24 @@ struct TestCost {
 
 }  // namespace
 
-TestData with_closing_normal_anisotropy(TestData t) {
-  if (t.snapshot_eta.size() != t.a_n.size() || t.a_c.size() != t.a_n.size() ||
-      t.a_t.size() != t.a_n.size())
-    throw std::runtime_error("test '" + t.name + "' (" + t.source +
-                             "): its SFF table lacks the contacts' stress ratio eta or a_t at "
-                             "some snapshot, from which the contact-network model's a_n is found "
-                             "(run `sffcal sff` again)");
-  for (std::size_t k = 0; k < t.a_n.size(); ++k) {
-    try {
-      t.a_n[k] = sff::concise_normal_anisotropy(t.a_c[k], t.a_t[k], t.snapshot_eta[k]);
-    } catch (const sff::StatisticsError& e) {
-      throw std::runtime_error("test '" + t.name + "' (" + t.source + "), snapshot " +
-                               std::to_string(k) + ": " + e.what());
-    }
-  }
-  t.normal_anisotropy = "closing";
-  return t;
-}
-
-State<double> initial_state(const TestData& t) {
-  if (t.coordination.empty() || t.lambda.empty() || t.a_t.empty())
-    throw std::runtime_error("test '" + t.name + "' (" + t.source +
-                             "): its SFF table has no coordination, lambda or a_t, which the "
-                             "contact-network model starts from (run `sffcal sff` again)");
-  return {t.e0,
-          t.coordination.front(),
-          t.lambda.front(),
-          axisymmetric(t.a_c.front()),
-          axisymmetric(t.a_n.front()),
-          axisymmetric(t.a_t.front()),
-          axisymmetric(t.a_c.front())};  // the whole initial fabric is the specimen's own (N2d)
-}
-
 Curve follow_strain_path(const Parameters<double>& par, const TestData& t,
                          const FitOptions& options) {
-  validate(par);
-  const std::vector<Node> nodes = path_nodes(t);
-  PathState<double> s = path_start(t);
-  Curve c;
-  record(c, s, nodes.front().axial, nodes.front().volumetric, nodes.front());
-  for (std::size_t k = 1; k < nodes.size(); ++k) {
-    const double da = nodes[k].axial - nodes[k - 1].axial;
-    const double dr = 0.5 * ((nodes[k].volumetric - nodes[k - 1].volumetric) - da);
-    const int substeps = checked_substeps(par, s, std::sqrt(da * da + 2.0 * dr * dr), options);
-    if (substeps == 0) {
-      c.complete = false;
-      c.message = too_stiff_message(nodes[k].axial, options);
-      return c;
-    }
-    s = integrate(par, s, strain_increment(da, dr), substeps);
-    if (!admissible(s)) {
-      c.complete = false;
-      c.message = "the state left its admissible range at axial strain " +
-                  std::to_string(nodes[k].axial);
-      return c;
-    }
-    record(c, s, nodes[k].axial, nodes[k].volumetric, nodes[k]);
-  }
-  return c;
+  return model::network::follow_strain_path(par, path_start(t), path_nodes(t), kDemYoungsModulus,
+                                     options);
 }
 
 Curve predict(const Parameters<double>& par, const TestData& t, const FitOptions& options,
               std::optional<double> lateral_stress) {
-  validate(par);
-  const std::vector<Node> nodes = path_nodes(t);
-  PathState<double> s = path_start(t);
-  const double target = lateral_stress.value_or(lateral_component(stress(s, kDemYoungsModulus)));
   const bool drained = holds_lateral_stress(t.path);
   if (!drained && !is_undrained(t.path))
     throw std::runtime_error("test '" + t.name + "': the contact-network model predicts drained "
                              "and undrained triaxial paths, not " + to_string(t.path));
-  Curve c;
-  double volumetric = 0.0, lateral_ratio = -0.3;
-  record(c, s, nodes.front().axial, volumetric, nodes.front());
-  for (std::size_t k = 1; k < nodes.size(); ++k) {
-    const double da = nodes[k].axial - nodes[k - 1].axial;
-    double dr = -0.5 * da;
-    PathState<double> end;
-    if (drained) {
-      dr = lateral_ratio * da;
-      if (!drained_increment(par, s, da, target, dr, end, options)) {
-        c.complete = false;
-        c.message = drained_substeps(par, s, da, options) == 0
-                        ? too_stiff_message(nodes[k].axial, options)
-                        : "no lateral strain holds the lateral stress at axial strain " +
-                              std::to_string(nodes[k].axial);
-        return c;
-      }
-      lateral_ratio = dr / da;
-    } else {
-      const int substeps = checked_substeps(par, s, std::abs(da) * std::sqrt(1.5), options);
-      if (substeps == 0) {
-        c.complete = false;
-        c.message = too_stiff_message(nodes[k].axial, options);
-        return c;
-      }
-      end = integrate(par, s, strain_increment(da, dr), substeps);
-    }
-    if (!admissible(end)) {
-      c.complete = false;
-      c.message = "the state left its admissible range at axial strain " +
-                  std::to_string(nodes[k].axial);
-      return c;
-    }
-    s = end;
-    volumetric += da + 2.0 * dr;
-    record(c, s, nodes[k].axial, volumetric, nodes[k]);
-  }
-  return c;
+  const PathState<double> start = path_start(t);
+  const double target =
+      lateral_stress.value_or(lateral_component(stress(start, kDemYoungsModulus)));
+  return model::network::predict(par, start, path_nodes(t),
+                          drained ? Lateral::kStressHeld : Lateral::kConstantVolume, target,
+                          kDemYoungsModulus, options);
 }
 
 Errors compare(const Curve& c, const TestData& t) {

@@ -5,7 +5,6 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -107,16 +106,6 @@ std::string summary_markdown(const std::vector<TestOutcome>& outcomes, const Fit
 }
 
 }  // namespace
-
-void check_unique_names(const std::vector<TestData>& fitted,
-                        const std::vector<TestData>& held_back) {
-  std::set<std::string> names;
-  for (const auto* list : {&fitted, &held_back})
-    for (const TestData& t : *list)
-      if (!names.insert(t.name).second)
-        throw std::runtime_error("two tests are named '" + t.name +
-                                 "': their outputs would overwrite each other");
-}
 
 std::string write_fit_outputs(const std::string& folder, const std::vector<TestData>& fitted,
                               const std::vector<TestData>& held_back, const FitResult& result,

@@ -42,7 +42,7 @@ double interpolate(const std::vector<CurvePoint>& points, double x, double Curve
 
 // The model integrates no state below its minimum mean stress, so a specimen confined below it is
 // refused before the first step (the FE solver would otherwise cut that step to nothing).
-std::string refused_confinement(const AcstSpecimen& specimen, const AcstLoading& loading) {
+std::string refused_confinement(const AcstSpecimen& specimen, const TriaxialLoading& loading) {
   if (specimen.confining_pressure >= loading.integration.min_pressure) return "";
   std::ostringstream message;
   message << "confining pressure " << specimen.confining_pressure
@@ -54,7 +54,7 @@ std::string refused_confinement(const AcstSpecimen& specimen, const AcstLoading&
 }  // namespace
 
 Curve run_acst_driver_triaxial(const model::acst::Parameters<double>& parameters,
-                               const AcstSpecimen& specimen, const AcstLoading& loading) {
+                               const AcstSpecimen& specimen, const TriaxialLoading& loading) {
   const auto t0 = std::chrono::steady_clock::now();
   // model::acst::drained_triaxial's path, increment by increment through the public
   // model::acst::mixed_increment, so that an increment whose Newton iterate keeps changing one of
@@ -141,8 +141,8 @@ Curve run_acst_driver_triaxial(const model::acst::Parameters<double>& parameters
 }
 
 Curve run_acst_fe_triaxial(const model::acst::Parameters<double>& parameters,
-                           const AcstSpecimen& specimen, const AcstLoading& loading,
-                           const AcstMeshOptions& mesh) {
+                           const AcstSpecimen& specimen, const TriaxialLoading& loading,
+                           const TriaxialMeshOptions& mesh) {
   const std::string refused = refused_confinement(specimen, loading);
   if (!refused.empty()) {
     Curve curve;
@@ -158,7 +158,7 @@ Curve run_acst_fe_triaxial(const model::acst::Parameters<double>& parameters,
 }
 
 Curve run_fe_triaxial(const Material& material, double confining_pressure,
-                      const AcstLoading& loading, const AcstMeshOptions& mesh) {
+                      const TriaxialLoading& loading, const TriaxialMeshOptions& mesh) {
   const auto t0 = std::chrono::steady_clock::now();
   TriaxialOptions options;
   options.width = mesh.width;

@@ -8,19 +8,20 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "model/acst_model.h"
+#include "calibration/network_test_data.h"
 #include "fe_model/acst_check.h"
-#include "runfile/dem_test.h"
-
-#ifdef SFFCAL_FE_CHECK_NETWORK
-#include "calibration/network_fit.h"
+#include "fe_model/model_material.h"
 #include "fe_model/network_material.h"
-#endif
+#include "model/acst_model.h"
+#include "model/network_path.h"
+#include "model/point_driver.h"
+#include "runfile/dem_test.h"
 
 namespace fe_model {
 namespace {
@@ -93,11 +94,25 @@ DemRun dem_run(const runfile::DemTest& test, const std::string& path, double a_c
   return run;
 }
 
+// One case of the check: a specimen, its runs and the DEM run it came from (if any). The model's
+// own setup (acst_check, network_check, any_model_check) says how each run is made.
 struct Case {
   std::string name;
-  AcstSpecimen specimen;
+  double confining_pressure = 0.0;  // sigma_3 [Pa]
+  std::string description;          // logged after the case's name
+  std::function<Curve()> driver;    // the material point on the element's path
+  std::function<Curve(const TriaxialMeshOptions&)> fe;  // the element or the mesh
   const DemRun* dem = nullptr;
-  std::string fabric_source;
+};
+
+// What fe-check runs for the model of a parameter file.
+struct Check {
+  std::vector<std::string> header;  // logged before the cases
+  std::vector<DemRun> dem_runs;     // the cases point into it: filled before the cases
+  std::vector<Case> cases;
+  // Element vs driver: both solve the same discrete equations to round-off, unless the model's
+  // driver integrates differently from its update (network_check).
+  double driver_tolerance = 1e-8;
 };
 
 std::string pressure_name(double pressure) {
@@ -147,8 +162,8 @@ std::string format_value(double v) {
 }
 
 // The 2x2x4 mesh of every case, its VTU files in <folder>/vtu/.
-AcstMeshOptions check_mesh_options(const fs::path& folder, bool verbose) {
-  AcstMeshOptions mesh;
+TriaxialMeshOptions check_mesh_options(const fs::path& folder, bool verbose) {
+  TriaxialMeshOptions mesh;
   mesh.cells_x = mesh.cells_y = 2;
   mesh.cells_z = 4;
   mesh.verbose = verbose;
@@ -190,115 +205,237 @@ void write_summary(const fs::path& out_folder, const std::vector<FeCheckRow>& ch
   if (!summary) throw std::runtime_error("cannot write " + (out_folder / "summary.csv").string());
 }
 
-#ifdef SFFCAL_FE_CHECK_NETWORK
+// ACST (docs/fe.md): the plain pressure cases with an isotropic fabric and the DEM runs' cases
+// with the fabric of their first SFF row, F_0 = A_DEM / a_cs; ACST's own driver, whose integration
+// options are the element's, so that both agree to round-off.
+Check acst_check(const FeCheckOptions& options, const model::ParameterValues& values) {
+  // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
+  const model::acst::Parameters<double> parameters = model::acst::parameters_of(values);
+  double a_cs = kDefaultAcs;
+  std::string a_cs_source = "default (dense_100kPa_2000 critical state, docs/fe.md)";
+  if (options.a_cs > 0.0) {
+    a_cs = options.a_cs;
+    a_cs_source = "--a-cs";
+  } else if (const std::optional<double> from_file =
+                 fabric_normalisation(values, options.parameters_path)) {
+    a_cs = *from_file;
+    a_cs_source = "parameter file";
+  }
+  TriaxialLoading loading;
+  loading.axial_strain_end = options.max_strain;
+  loading.n_steps = options.steps;
+  loading.integration.tolerance = options.integration_tolerance;
+
+  Check check;
+  check.header = {
+      format("sffcal fe-check: parameters %s, a_cs = %.4g (%s)", options.parameters_path.c_str(),
+             a_cs, a_cs_source.c_str()),
+      format("drained triaxial compression to axial strain %.3g in %u steps; model integration "
+             "tolerance %.1e; output in %s/",
+             options.max_strain, options.steps, loading.integration.tolerance,
+             options.output_folder.c_str())};
+  for (const std::string& path : options.dem_runs)
+    check.dem_runs.push_back(dem_run(runfile::read_dem_test(path), path, a_cs));
+
+  auto add_case = [&](const std::string& name, const AcstSpecimen& specimen,
+                      const std::string& fabric_source, const DemRun* dem) {
+    const double f0 = specimen.fabric(2, 2) - 0.5 * (specimen.fabric(0, 0) + specimen.fabric(1, 1));
+    Case c;
+    c.name = name;
+    c.confining_pressure = specimen.confining_pressure;
+    c.description = format("sigma_3 = %.4g kPa, e_0 = %.4g, F_0:n_c = %.4g (%s)",
+                           specimen.confining_pressure / 1e3, specimen.void_ratio,
+                           model::acst::kSqrtTwoThirds * f0, fabric_source.c_str());
+    c.driver = [=] { return run_acst_driver_triaxial(parameters, specimen, loading); };
+    c.fe = [=](const TriaxialMeshOptions& mesh) {
+      return run_acst_fe_triaxial(parameters, specimen, loading, mesh);
+    };
+    c.dem = dem;
+    check.cases.push_back(c);
+  };
+  for (double p : options.pressures) {
+    AcstSpecimen specimen;
+    specimen.confining_pressure = p;
+    specimen.void_ratio = options.void_ratio;
+    add_case(pressure_name(p), specimen, "isotropic", nullptr);
+  }
+  for (const DemRun& run : check.dem_runs) {
+    AcstSpecimen specimen;
+    specimen.confining_pressure = run.confining_pressure;
+    specimen.void_ratio = run.void_ratio;
+    std::string fabric_source = "isotropic (no /analysis/sff: run 'sffcal sff' on the file first)";
+    if (run.initial_a_c) {
+      specimen.fabric = fabric_from_dem_anisotropy(*run.initial_a_c, a_cs);
+      fabric_source = "/analysis/sff a_c = " + format_value(*run.initial_a_c);
+    }
+    add_case(run.name, specimen, fabric_source, &run);
+  }
+  return check;
+}
+
 // The contact-network model (docs/network-model.md) on the DEM runs' cases: its network starts
 // from each run's first snapshot, so there are no plain pressure cases. The driver holds the
 // lateral stress at sigma_3, as the element's confining traction does (the initial SFF stress
 // differs from it by the initial anisotropies). Element and driver solve the same increments with
 // RK4 substeps chosen from different strain norms (the FE update's whole increment, the driver's
-// axial one), so they agree to the integration error, not to round-off: kNetworkDriverTolerance.
-constexpr double kNetworkDriverTolerance = 1e-6;
-
-FeCheckResult run_network_fe_check(const FeCheckOptions& options,
-                                   const model::ParameterValues& values, const FeCheckLog& log) {
-  namespace net = calibration::network;
+// axial one), so they agree to the integration error, not to round-off: 1e-6.
+Check network_check(const FeCheckOptions& options, const model::ParameterValues& values) {
+  namespace net = model::network;
   if (options.dem_runs.empty())
     throw std::invalid_argument("the contact-network model starts from a DEM run's network (Z, "
                                 "Lambda, anisotropies): give it with --dem RUN.h5");
   const double youngs_modulus = values.constants.at(0);
-  const model::network::Parameters<double> parameters =
-      model::network::from_array(values.parameters.data());
-  const fs::path out_folder(options.output_folder);
-  fs::create_directories(out_folder);
-  AcstLoading loading;
+  const net::Parameters<double> parameters = net::from_array(values.parameters.data());
+  Check check;
+  check.driver_tolerance = 1e-6;
+  check.header = {
+      format("sffcal fe-check: contact-network parameters %s, E = %.4g Pa",
+             options.parameters_path.c_str(), youngs_modulus),
+      format("drained triaxial compression to axial strain %.3g in %u steps; output in %s/ "
+             "(the plain pressure cases need an initial network: not run)",
+             options.max_strain, options.steps, options.output_folder.c_str())};
+  TriaxialLoading loading;
   loading.axial_strain_end = options.max_strain;
   loading.n_steps = options.steps;
-  log(format("sffcal fe-check: contact-network parameters %s, E = %.4g Pa",
-             options.parameters_path.c_str(), youngs_modulus));
-  log(format("drained triaxial compression to axial strain %.3g in %u steps; output in %s/ "
-             "(the plain pressure cases need an initial network: not run)",
-             options.max_strain, options.steps, out_folder.string().c_str()));
-  FeCheckResult result;
+  std::vector<calibration::TestData> tests;
   for (const std::string& path : options.dem_runs) {
     // The network's fabric invariant is a_c itself: A:n_c / a_cs with a_cs = sqrt(2/3).
     const runfile::DemTest run = runfile::read_dem_test(path);  // read once for both uses
-    const DemRun dem = dem_run(run, path, model::acst::kSqrtTwoThirds);
-    const calibration::TestData test =
-        net::with_closing_normal_anisotropy(calibration::test_data(run, path));
-    const model::network::State<double> start = net::initial_state(test);
+    check.dem_runs.push_back(dem_run(run, path, model::acst::kSqrtTwoThirds));
+    tests.push_back(calibration::network::with_closing_normal_anisotropy(
+        calibration::test_data(run, path)));
+  }
+  for (std::size_t r = 0; r < tests.size(); ++r) {
+    const DemRun& dem = check.dem_runs[r];
+    const net::State<double> start = calibration::network::initial_state(tests[r]);
     NetworkInitialState initial;
     initial.void_ratio = start.void_ratio;
     initial.coordination = start.coordination;
     initial.fabric = start.fabric;
     initial.normal = start.normal;
     initial.tangential = start.tangential;
-    const NetworkMaterial material(parameters, initial, youngs_modulus);
-    const fs::path folder = out_folder / dem.name;
-    fs::create_directories(folder);
-    log(format("\ncase %s: sigma_3 = %.4g kPa, e_0 = %.4g, Z_0 = %.4g, a_c0 = %.3g, a_n0 = %.3g",
-               dem.name.c_str(), dem.confining_pressure / 1e3, initial.void_ratio,
-               initial.coordination, model::network::triaxial_part(start.fabric),
-               model::network::triaxial_part(start.normal)));
-
-    // The material point on the element's axial strains, from the element's initial state.
-    const auto t0 = std::chrono::steady_clock::now();
-    const model::network::State<double> point0 = material.to_model(
-        material.initial_state(-dem.confining_pressure * dealii::unit_symmetric_tensor<3>()));
-    calibration::TestData path_test = test;
-    path_test.axial_strain.clear();
-    for (unsigned int k = 0; k <= options.steps; ++k)
-      path_test.axial_strain.push_back(options.max_strain * k / options.steps);
-    const std::size_t n = path_test.axial_strain.size();
-    path_test.volumetric_strain.assign(n, 0.0);
-    path_test.eta.assign(n, 0.0);
-    path_test.void_ratio.assign(n, initial.void_ratio);
-    path_test.p.assign(n, dem.confining_pressure);
-    path_test.snapshot_axial_strain = {0.0};
-    path_test.coordination = {point0.coordination};
-    path_test.lambda = {point0.lambda};
-    path_test.a_c = {test.a_c.front()};
-    path_test.a_n = {test.a_n.front()};
-    path_test.a_t = {test.a_t.front()};
-    path_test.mobilisation = path_test.snapshot_eta = {0.0};
-    net::FitOptions driver_options;  // the element's substeps (network_update.h)
-    driver_options.substep_size = model::network::kUpdateSubstepSize;
-    const net::Curve point = net::predict(parameters, path_test, driver_options,
-                                          dem.confining_pressure);  // the FE's traction
-    Curve driver;
-    driver.label = "driver";
-    driver.completed = point.complete;
-    driver.message = point.message;
-    for (std::size_t k = 0; k < point.axial_strain.size(); ++k)
-      driver.points.push_back(curve_point(point.axial_strain[k], point.volumetric_strain[k],
-                                          point.p[k], point.q[k], point.void_ratio[k],
-                                          point.a_c[k]));
-    driver.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    write_curve_csv((folder / "driver.csv").string(), driver);
-    log("  " + run_line(driver, options.steps));
-
-    AcstMeshOptions element_options;
-    element_options.verbose = options.verbose;
-    const Curve element = run_fe_triaxial(material, dem.confining_pressure, loading, element_options);
-    write_curve_csv((folder / "element.csv").string(), element);
-    log("  " + run_line(element, options.steps));
-    result.runs_completed = result.runs_completed && driver.completed && element.completed;
-    add_path_checks(result.checks, dem.name, "element vs driver", element, driver,
-                    kNetworkDriverTolerance);
-    if (options.mesh) {
-      const Curve mesh = run_fe_triaxial(material, dem.confining_pressure, loading,
-                                         check_mesh_options(folder, options.verbose));
-      write_curve_csv((folder / "mesh.csv").string(), mesh);
-      log("  " + run_line(mesh, options.steps));
-      result.runs_completed = result.runs_completed && mesh.completed;
-      add_path_checks(result.checks, dem.name, "mesh vs element", mesh, element);
-    }
-    add_dem_checks(result.checks, dem.name, folder, element, dem, options);
+    const auto material = std::make_shared<const NetworkMaterial>(parameters, initial,
+                                                                  youngs_modulus);
+    Case c;
+    c.name = dem.name;
+    c.confining_pressure = dem.confining_pressure;
+    c.description = format("sigma_3 = %.4g kPa, e_0 = %.4g, Z_0 = %.4g, a_c0 = %.3g, a_n0 = %.3g",
+                           dem.confining_pressure / 1e3, initial.void_ratio, initial.coordination,
+                           net::triaxial_part(start.fabric), net::triaxial_part(start.normal));
+    c.dem = &dem;
+    const double sigma_3 = dem.confining_pressure;
+    // The material point on the element's axial strains, from the element's initial state: the
+    // run's network with the Z and Lambda that the element's initial stress gives.
+    c.driver = [material, start, sigma_3, parameters, youngs_modulus, &options] {
+      const auto t0 = std::chrono::steady_clock::now();
+      const net::State<double> point0 = material->to_model(
+          material->initial_state(-sigma_3 * dealii::unit_symmetric_tensor<3>()));
+      net::State<double> path_start = start;
+      path_start.coordination = point0.coordination;
+      path_start.lambda = point0.lambda;
+      std::vector<net::PathNode> nodes;
+      for (unsigned int k = 0; k <= options.steps; ++k)
+        nodes.push_back({options.max_strain * k / options.steps, 0.0, static_cast<int>(k),
+                         k == 0 ? 0 : -1});
+      net::PathOptions driver_options;  // the element's substeps (network_update.h)
+      driver_options.substep_size = net::kUpdateSubstepSize;
+      const net::Curve point = net::predict(parameters, net::diagonal_state(path_start), nodes,
+                                            net::Lateral::kStressHeld, sigma_3, youngs_modulus,
+                                            driver_options);
+      Curve driver;
+      driver.label = "driver";
+      driver.completed = point.complete;
+      driver.message = point.message;
+      for (std::size_t k = 0; k < point.axial_strain.size(); ++k)
+        driver.points.push_back(curve_point(point.axial_strain[k], point.volumetric_strain[k],
+                                            point.p[k], point.q[k], point.void_ratio[k],
+                                            point.a_c[k]));
+      driver.wall_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      return driver;
+    };
+    c.fe = [material, sigma_3, loading](const TriaxialMeshOptions& mesh) {
+      return run_fe_triaxial(*material, sigma_3, loading, mesh);
+    };
+    check.cases.push_back(c);
   }
-  write_summary(out_folder, result.checks);
-  return result;
+  return check;
 }
 
-#endif  // SFFCAL_FE_CHECK_NETWORK
+// The material point of any model through its Behaviour (model/point_driver.h), as a curve.
+Curve drive_point(const model::Behaviour& behaviour, const std::vector<double>& inputs,
+                  double confining_pressure, const FeCheckOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  model::DrainedTriaxialPath path;
+  path.lateral_stress = confining_pressure;
+  path.axial_strain_end = options.max_strain;
+  path.steps = static_cast<int>(options.steps);
+  const model::DriverPath point = model::drive_drained_triaxial(behaviour, inputs, path);
+  const int void_ratio = model::slot_offset(behaviour.description().state(), "void_ratio");
+  Curve driver;
+  driver.label = "driver";
+  driver.completed = point.completed;
+  driver.message = point.message;
+  for (const model::DriverPoint& x : point.points) {
+    CurvePoint row = curve_point(
+        x.strain(2, 2), x.strain.trace(), x.stress.trace() / 3.0,
+        x.stress(2, 2) - 0.5 * (x.stress(0, 0) + x.stress(1, 1)),
+        void_ratio < 0 ? std::numeric_limits<double>::quiet_NaN()
+                       : x.state[static_cast<std::size_t>(void_ratio)],
+        0.0);  // as the element writes a fabric invariant it does not know
+    row.newton_iterations = x.newton_iterations;
+    row.status = model::to_string(x.status);
+    driver.newton_iterations += x.newton_iterations;
+    driver.points.push_back(row);
+  }
+  driver.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return driver;
+}
+
+// Any other registered model (model/descriptor.h), through the model interface alone: each case's
+// initial inputs are the void ratio (where the model takes one: --void-ratio, or the DEM run's
+// e_0) and zero for every other slot (an isotropic specimen); its driver is the driver of any model
+// (model/point_driver.h).
+Check any_model_check(const FeCheckOptions& options, const model::ParameterValues& values) {
+  const model::ModelDescription& description = model::find_model(values.model);
+  const std::shared_ptr<const model::Behaviour> behaviour =
+      description.make(values.constants, values.parameters);
+  const std::vector<model::Slot>& slots = description.initial_inputs();
+  const int void_ratio = model::slot_offset(slots, "void_ratio");
+  Check check;
+  check.header = {
+      format("sffcal fe-check: %s parameters %s", description.name().c_str(),
+             options.parameters_path.c_str()),
+      format("drained triaxial compression to axial strain %.3g in %u steps; output in %s/",
+             options.max_strain, options.steps, options.output_folder.c_str())};
+  TriaxialLoading loading;
+  loading.axial_strain_end = options.max_strain;
+  loading.n_steps = options.steps;
+  for (const std::string& path : options.dem_runs)
+    check.dem_runs.push_back(
+        dem_run(runfile::read_dem_test(path), path, model::acst::kSqrtTwoThirds));
+  auto add_case = [&](const std::string& name, double pressure, double e0, const DemRun* dem) {
+    std::vector<double> inputs(static_cast<std::size_t>(model::slot_components(slots)), 0.0);
+    if (void_ratio >= 0) inputs[static_cast<std::size_t>(void_ratio)] = e0;
+    const auto material = std::make_shared<const ModelMaterial>(behaviour, inputs);
+    Case c;
+    c.name = name;
+    c.confining_pressure = pressure;
+    c.description = void_ratio >= 0 ? format("sigma_3 = %.4g kPa, e_0 = %.4g, isotropic",
+                                             pressure / 1e3, e0)
+                                    : format("sigma_3 = %.4g kPa", pressure / 1e3);
+    c.driver = [=, &options] { return drive_point(*behaviour, inputs, pressure, options); };
+    c.fe = [=](const TriaxialMeshOptions& mesh) {
+      return run_fe_triaxial(*material, pressure, loading, mesh);
+    };
+    c.dem = dem;
+    check.cases.push_back(c);
+  };
+  for (double p : options.pressures) add_case(pressure_name(p), p, options.void_ratio, nullptr);
+  for (const DemRun& run : check.dem_runs)
+    add_case(run.name, run.confining_pressure, run.void_ratio, &run);
+  return check;
+}
 
 }  // namespace
 
@@ -315,114 +452,45 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
     throw std::invalid_argument("--void-ratio " + format_value(options.void_ratio) +
                                 " is not a void ratio the model can carry: it must be in (0, 2.97)");
 
-  // The parameter file, read once: the model, its values and the rest (a_cs).
+  // The parameter file, read once: the model, its values and the rest (ACST's a_cs).
   const model::ParameterValues values = model::read_parameter_file(options.parameters_path);
-  const std::string& model = values.model;
-  if (model == "contact_network") {
-#ifdef SFFCAL_FE_CHECK_NETWORK
-    return run_network_fe_check(options, values, log);
-#else
-    throw std::invalid_argument("the contact-network fe-check needs the fits' library: this "
-                                "sffcal was configured with SFFCAL_BUILD_CALIBRATION=OFF");
-#endif
-  }
-  if (model != "acst")
-    throw std::invalid_argument("parameter file '" + options.parameters_path + "': model '" +
-                                model + "' (fe-check reads \"acst\" and \"contact_network\")");
-
-  // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
-  const model::acst::Parameters<double> parameters = model::acst::parameters_of(values);
-  double a_cs = kDefaultAcs;
-  std::string a_cs_source = "default (dense_100kPa_2000 critical state, docs/fe.md)";
-  if (options.a_cs > 0.0) {
-    a_cs = options.a_cs;
-    a_cs_source = "--a-cs";
-  } else if (const std::optional<double> from_file =
-                 fabric_normalisation(values, options.parameters_path)) {
-    a_cs = *from_file;
-    a_cs_source = "parameter file";
-  }
-
-  std::vector<DemRun> dem_runs;
-  for (const std::string& path : options.dem_runs)
-    dem_runs.push_back(dem_run(runfile::read_dem_test(path), path, a_cs));
-
-  std::vector<Case> cases;
-  for (double p : options.pressures) {
-    Case c;
-    c.name = pressure_name(p);
-    c.specimen.confining_pressure = p;
-    c.specimen.void_ratio = options.void_ratio;
-    c.fabric_source = "isotropic";
-    cases.push_back(c);
-  }
-  for (const DemRun& run : dem_runs) {
-    Case c;
-    c.name = run.name;
-    c.dem = &run;
-    c.specimen.confining_pressure = run.confining_pressure;
-    c.specimen.void_ratio = run.void_ratio;
-    if (run.initial_a_c) {
-      c.specimen.fabric = fabric_from_dem_anisotropy(*run.initial_a_c, a_cs);
-      c.fabric_source = "/analysis/sff a_c = " + format_value(*run.initial_a_c);
-    } else {
-      c.fabric_source = "isotropic (no /analysis/sff: run 'sffcal sff' on the file first)";
-    }
-    cases.push_back(c);
-  }
+  const Check check = values.model == "acst"              ? acst_check(options, values)
+                      : values.model == "contact_network" ? network_check(options, values)
+                                                          : any_model_check(options, values);
 
   const fs::path out_folder(options.output_folder);
   fs::create_directories(out_folder);
-  AcstLoading loading;
-  loading.axial_strain_end = options.max_strain;
-  loading.n_steps = options.steps;
-  loading.integration.tolerance = options.integration_tolerance;
-
-  log(format("sffcal fe-check: parameters %s, a_cs = %.4g (%s)", options.parameters_path.c_str(),
-             a_cs, a_cs_source.c_str()));
-  log(format("drained triaxial compression to axial strain %.3g in %u steps; model integration "
-             "tolerance %.1e; output in %s/",
-             options.max_strain, options.steps, loading.integration.tolerance,
-             out_folder.string().c_str()));
-
+  for (const std::string& line : check.header) log(line);
   FeCheckResult result;
-  std::vector<FeCheckRow>& checks = result.checks;
-  bool& runs_completed = result.runs_completed;
-  for (const Case& c : cases) {
+  for (const Case& c : check.cases) {
     const fs::path folder = out_folder / c.name;
     fs::create_directories(folder);
-    const double f0 = c.specimen.fabric(2, 2) - 0.5 * (c.specimen.fabric(0, 0) +
-                                                        c.specimen.fabric(1, 1));
-    log(format("\ncase %s: sigma_3 = %.4g kPa, e_0 = %.4g, F_0:n_c = %.4g (%s)", c.name.c_str(),
-               c.specimen.confining_pressure / 1e3, c.specimen.void_ratio,
-               model::acst::kSqrtTwoThirds * f0, c.fabric_source.c_str()));
+    log(format("\ncase %s: %s", c.name.c_str(), c.description.c_str()));
 
-    const Curve driver = run_acst_driver_triaxial(parameters, c.specimen, loading);
+    const Curve driver = c.driver();
     write_curve_csv((folder / "driver.csv").string(), driver);
     log("  " + run_line(driver, options.steps));
 
-    AcstMeshOptions element_options;
+    TriaxialMeshOptions element_options;
     element_options.verbose = options.verbose;
-    const Curve element =
-        run_acst_fe_triaxial(parameters, c.specimen, loading, element_options);
+    const Curve element = c.fe(element_options);
     write_curve_csv((folder / "element.csv").string(), element);
     log("  " + run_line(element, options.steps));
-    runs_completed = runs_completed && driver.completed && element.completed;
-    add_path_checks(checks, c.name, "element vs driver", element, driver);
+    result.runs_completed = result.runs_completed && driver.completed && element.completed;
+    add_path_checks(result.checks, c.name, "element vs driver", element, driver,
+                    check.driver_tolerance);
 
     if (options.mesh) {
-      const Curve mesh = run_acst_fe_triaxial(parameters, c.specimen, loading,
-                                              check_mesh_options(folder, options.verbose));
+      const Curve mesh = c.fe(check_mesh_options(folder, options.verbose));
       write_curve_csv((folder / "mesh.csv").string(), mesh);
       log("  " + run_line(mesh, options.steps));
-      runs_completed = runs_completed && mesh.completed;
-      add_path_checks(checks, c.name, "mesh vs element", mesh, element);
+      result.runs_completed = result.runs_completed && mesh.completed;
+      add_path_checks(result.checks, c.name, "mesh vs element", mesh, element);
     }
 
-    if (c.dem) add_dem_checks(checks, c.name, folder, element, *c.dem, options);
+    if (c.dem) add_dem_checks(result.checks, c.name, folder, element, *c.dem, options);
   }
-
-  write_summary(out_folder, checks);
+  write_summary(out_folder, result.checks);
   return result;
 }
 

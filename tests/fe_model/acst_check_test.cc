@@ -36,8 +36,8 @@ AcstSpecimen specimen(double pressure) {
 
 // Drained compression to 5 %: past the peak of this dense specimen at 100 kPa, short enough for
 // the test's time budget (the ACST update with its Jet tangent costs a few ms).
-AcstLoading loading() {
-  AcstLoading l;
+TriaxialLoading loading() {
+  TriaxialLoading l;
   l.axial_strain_end = 0.05;
   l.n_steps = 10;
   return l;
@@ -122,11 +122,11 @@ TEST(AcstCheck, SingleElementReproducesTheDriverAt100To300kPa) {
 
 TEST(AcstCheck, SmallMeshGivesTheHomogeneousAnswer) {
   const model::acst::Parameters<double> par = parameters();
-  AcstLoading short_loading = loading();  // 2x2x4 = 128 points: fewer, larger steps
+  TriaxialLoading short_loading = loading();  // 2x2x4 = 128 points: fewer, larger steps
   short_loading.axial_strain_end = 0.005;  // one plastic step: yield is crossed inside it
   short_loading.n_steps = 1;
   const Curve element = run_acst_fe_triaxial(par, specimen(100e3), short_loading, {});
-  AcstMeshOptions mesh;
+  TriaxialMeshOptions mesh;
   mesh.cells_x = mesh.cells_y = 2;
   mesh.cells_z = 4;
   const Curve meshed = run_acst_fe_triaxial(par, specimen(100e3), short_loading, mesh);
@@ -149,10 +149,10 @@ TEST(AcstCheck, SmallMeshGivesTheHomogeneousAnswer) {
 // must converge through step cutting or stop with a clear message, and never produce NaN.
 TEST(AcstCheck, TenfoldStrainIncrementCutsOrFailsClearlyNeverNaN) {
   const model::acst::Parameters<double> par = parameters();
-  AcstLoading coarse;
+  TriaxialLoading coarse;
   coarse.axial_strain_end = 0.06;
   coarse.n_steps = 2;
-  AcstMeshOptions options;
+  TriaxialMeshOptions options;
   options.max_newton_iterations = 8;  // a tight budget, so that big increments have to be cut
   const Curve element = run_acst_fe_triaxial(par, specimen(100e3), coarse, options);
   EXPECT_TRUE(all_finite(element));
@@ -163,7 +163,7 @@ TEST(AcstCheck, TenfoldStrainIncrementCutsOrFailsClearlyNeverNaN) {
     ASSERT_EQ(element.points.size(), 3u);
     // Close to the fine-step answer at the same strain (the path is step-size dependent only
     // through the drained condition between steps).
-    AcstLoading fine = coarse;
+    TriaxialLoading fine = coarse;
     fine.n_steps = 20;  // the driver: cheap
     const Curve reference = run_acst_driver_triaxial(par, specimen(100e3), fine);
     ASSERT_TRUE(reference.completed) << reference.message;
@@ -177,7 +177,7 @@ TEST(AcstCheck, TenfoldStrainIncrementCutsOrFailsClearlyNeverNaN) {
   }
 
   // Far beyond: one step of 30 % with at most 2 cuts cannot converge; it must say so.
-  AcstLoading hopeless;
+  TriaxialLoading hopeless;
   hopeless.axial_strain_end = 0.3;
   hopeless.n_steps = 1;
   hopeless.integration.tolerance = 1e-6;  // it only has to fail: keep its huge increments cheap
@@ -197,10 +197,10 @@ TEST(AcstCheck, TenfoldStrainIncrementCutsOrFailsClearlyNeverNaN) {
 // differs by its discretisation: the comparison is to 1e-3, not to round-off.
 TEST(AcstCheck, NearZeroConfinementFollowsTheDriverOrStopsClearly) {
   const model::acst::Parameters<double> par = parameters();
-  AcstLoading short_path;
+  TriaxialLoading short_path;
   short_path.axial_strain_end = 0.01;
   short_path.n_steps = 5;
-  const Curve element = run_acst_fe_triaxial(par, specimen(1e3), short_path, AcstMeshOptions{});
+  const Curve element = run_acst_fe_triaxial(par, specimen(1e3), short_path, TriaxialMeshOptions{});
   EXPECT_TRUE(all_finite(element));
   if (element.completed) {
     const Curve driver = run_acst_driver_triaxial(par, specimen(1e3), short_path);
@@ -209,7 +209,7 @@ TEST(AcstCheck, NearZeroConfinementFollowsTheDriverOrStopsClearly) {
   } else {
     EXPECT_FALSE(element.message.empty());
   }
-  for (const Curve& below : {run_acst_fe_triaxial(par, specimen(50.0), short_path, AcstMeshOptions{}),
+  for (const Curve& below : {run_acst_fe_triaxial(par, specimen(50.0), short_path, TriaxialMeshOptions{}),
                              run_acst_driver_triaxial(par, specimen(50.0), short_path)}) {
     EXPECT_FALSE(below.completed);
     EXPECT_TRUE(below.points.empty());

@@ -16,13 +16,16 @@
 #include <vector>
 
 #include "calibration/fit.h"
+#include "calibration/network_test_data.h"
 #include "model/network_model.h"
+#include "model/network_path.h"
 #include "model/network_update.h"
 
 namespace calibration::network {
 
 // The contact-network model's names (model/network_model.h) as the fits use them.
 using model::network::admissible;
+using model::network::axisymmetric;
 using model::network::DiagonalTensor;
 using model::network::from_array;
 using model::network::integrate;
@@ -56,53 +59,13 @@ using model::network::upper_bounds;
 using model::network::validate;
 using model::network::write_parameters_json;
 
-/// The grain modulus E of the DEM (architecture.md), the normalisation of Lambda [Pa].
-inline constexpr double kDemYoungsModulus = 150e6;
+/// The model along one test (model/network_path.h), at the union of the DEM's series rows and
+/// snapshots in axial strain order; `row` / `snapshot` say which DEM row or snapshot a node is,
+/// -1 if none.
+using model::network::Curve;
 
-/// x diag(-1, -1, 2) / 3: the axisymmetric deviatoric tensor whose triaxial part t(.) is x.
-template <typename T>
-Tensor<T> axisymmetric(const T& x) {
-  Tensor<T> t = Tensor<T>::Zero();
-  t(0, 0) = t(1, 1) = -x / T(3.0);
-  t(2, 2) = T(2.0) * x / T(3.0);
-  return t;
-}
-
-/// The test as the contact-network model reads it: each snapshot's a_n replaced by the
-/// normal-force anisotropy with which the SFF equation of the snapshot's a_c and a_t gives its
-/// contacts' stress ratio (sff::concise_normal_anisotropy). The model's stress is the SFF equation
-/// of its state, whose truncation puts the measured anisotropies' stress ratio 6-10 % below the
-/// contacts' at a 500-clump dense specimen's peak; with the measured a_n the fit had to lift a_c
-/// to reach the DEM's q/p (docs/network-model.md, "State and stress"). Every front end that fits
-/// or checks the model against DEM runs reads them through this. Throws std::runtime_error naming
-/// the test and snapshot where no a_n gives its stress ratio.
-TestData with_closing_normal_anisotropy(TestData test);
-
-/// The state of the test's first snapshot (axisymmetric about z) with the void ratio of its first
-/// series row; the initial fabric is all inherent (Eq. N2d). Throws std::runtime_error naming the
-/// test when its data lack Z, Lambda or a_t.
-State<double> initial_state(const TestData& test);
-
-/// The model along one test, at the union of the DEM's series rows and snapshots (in axial strain
-/// order; `row` / `snapshot` say which DEM row or snapshot a node is, -1 if none).
-struct Curve {
-  std::vector<double> axial_strain, volumetric_strain, void_ratio, p, q, eta, lateral_stress;
-  std::vector<double> coordination, lambda, a_c, a_n, a_t;
-  std::vector<int> row, snapshot;
-  bool complete = true;   ///< false if the path stopped early (message says why)
-  std::string message;
-};
-
-struct FitOptions {
-  /// Rate constant times substep strain (substeps_for). 0.2, four times the update's: on the
-  /// paper-size runs the paths' q/p then lies within 2.1e-6 of converged ones along the DEM's
-  /// strain path (1.3e-8 at 0.05, 1.7e-5 at 0.4), far below the 6e-4 to 8.6e-4 the predicted
-  /// path's increments leave (test TheFitsPathsAreWithin1e3OfConvergedPaths;
-  /// docs/network-model.md).
-  double substep_size = 0.2;
-  /// An increment that needs more RK4 substeps fails (the fit's step is refused, a path stops):
-  /// about 400 times what the paper-size runs' fitted rates need per row.
-  int max_substeps = 2000;
+/// The paths' integration (PathOptions: substep_size, max_substeps) and the fit's settings.
+struct FitOptions : model::network::PathOptions {
   /// Residual scales: (model - DEM) / scale.
   double eta_scale = 0.05;
   double stress_scale = 0.02;       ///< relative lateral stress (drained) or p/p0 (undrained)
@@ -230,10 +193,6 @@ std::vector<Parameters<double>> starting_points(const Parameters<double>& start,
 /// the standard errors at the solution.
 FitResult fit(const std::vector<TestData>& tests, const Parameters<double>& start,
               const FitOptions& options = {});
-
-/// Throws std::runtime_error naming the name two of the tests share (their output files would
-/// overwrite each other): for a front end to call before a long fit.
-void check_unique_names(const std::vector<TestData>& fitted, const std::vector<TestData>& held_back);
 
 /// Writes a fit's outputs into `folder` (created if missing; the caller sees that it holds no
 /// earlier outputs) and returns the summary (Markdown):

@@ -31,7 +31,7 @@ struct AcstSpecimen {
 };
 
 /// Drained triaxial compression along z to axial_strain_end in n_steps equal increments.
-struct AcstLoading {
+struct TriaxialLoading {
   double axial_strain_end = 0.05;
   unsigned int n_steps = 50;
   /// Integration options of the model, the same for the driver and the FE runs so that they
@@ -44,7 +44,7 @@ struct AcstLoading {
 };
 
 /// The FE problem of fe_model/triaxial.h (one eighth of a box specimen, z axial).
-struct AcstMeshOptions {
+struct TriaxialMeshOptions {
   unsigned int cells_x = 1, cells_y = 1, cells_z = 1;
   double width = 0.5, height = 1.0;  ///< [m]; the answer of a homogeneous test does not depend on them
   double residual_rtol = 1e-10;
@@ -91,19 +91,19 @@ struct Curve {
 /// model::acst::drained_triaxial from model::acst::isotropic_state, with the loading's integration
 /// options and a Newton tolerance of 1e-9 p on the lateral stresses.
 Curve run_acst_driver_triaxial(const model::acst::Parameters<double>& parameters,
-                               const AcstSpecimen& specimen, const AcstLoading& loading);
+                               const AcstSpecimen& specimen, const TriaxialLoading& loading);
 
 /// fe_model::run_triaxial with an AcstMaterial at every quadrature point. Never throws for a
 /// model or Newton failure (completed = false and a message); throws std::invalid_argument for
 /// bad options and std::runtime_error for an unwritable VTU file.
 Curve run_acst_fe_triaxial(const model::acst::Parameters<double>& parameters,
-                           const AcstSpecimen& specimen, const AcstLoading& loading,
-                           const AcstMeshOptions& mesh);
+                           const AcstSpecimen& specimen, const TriaxialLoading& loading,
+                           const TriaxialMeshOptions& mesh);
 
 /// The same FE problem with any material at every quadrature point (the contact-network model's
 /// fe-check runs through it; loading.integration is the material's business, not used here).
 Curve run_fe_triaxial(const Material& material, double confining_pressure,
-                      const AcstLoading& loading, const AcstMeshOptions& mesh);
+                      const TriaxialLoading& loading, const TriaxialMeshOptions& mesh);
 
 /// Relative errors of a curve against a reference computed at the same axial strains (same
 /// steps): for x in {q, eps_v}, max_i |x_i - x_ref,i| / max_i |x_ref,i| over the common points.

@@ -1,11 +1,13 @@
-// fe-check (issue 6; docs/fe.md): element-level drained triaxial checks of the ACST model. For each
-// case (a confining pressure, or a DEM run's sigma_3, e_0 and initial fabric) it runs the
+// fe-check (docs/fe.md): element-level drained triaxial checks of any registered model. For each
+// case (a confining pressure, or a DEM run's sigma_3, e_0 and initial state) it runs the model's
 // material-point driver, one Q1 hexahedron and a 2x2x4 mesh to the same axial strain, writes one
 // CSV per run (and VTU files of the mesh) and decides which checks pass: the FE runs against the
-// driver and each other to 1e-8 (verification) and against the DEM (calibration quality).
+// driver and each other (verification) and against the DEM (calibration quality). ACST and the
+// contact-network model start from DEM runs and are driven in their own ways; any other model
+// runs through the model interface alone (model/point_driver.h).
 //
-// deal.II-free like acst_check.h (link fe_model_acst); `sffcal fe-check` parses its flags into
-// FeCheckOptions and prints what run_fe_check reports.
+// deal.II-free like acst_check.h (link fe_model_acst, which links no fit); `sffcal fe-check`
+// parses its flags into FeCheckOptions and prints what run_fe_check reports.
 #ifndef FE_MODEL_FE_CHECK_H_
 #define FE_MODEL_FE_CHECK_H_
 
@@ -16,7 +18,7 @@
 namespace fe_model {
 
 struct FeCheckOptions {
-  std::string parameters_path;         ///< ACST parameter file (calibration's JSON)
+  std::string parameters_path;         ///< a parameter file of any registered model
   std::vector<std::string> dem_runs;   ///< DEM run files (HDF5) to compare with
   std::vector<double> pressures = {100e3, 200e3, 300e3};  ///< sigma_3 of the plain cases [Pa]
   double void_ratio = 0.8;   ///< e_0 of the plain cases

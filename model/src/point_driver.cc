@@ -1,0 +1,86 @@
+// Drained triaxial compression of one point of any model (point_driver.h).
+#include "model/point_driver.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace model {
+
+DriverPath drive_drained_triaxial(const Behaviour& behaviour, const std::vector<double>& inputs,
+                                  const DrainedTriaxialPath& path) {
+  if (path.steps < 1) throw std::invalid_argument("drained triaxial path: steps must be >= 1");
+  if (!(path.lateral_stress > 0.0) || !std::isfinite(path.lateral_stress))
+    throw std::invalid_argument("drained triaxial path: the lateral stress must be positive [Pa]");
+  if (!std::isfinite(path.axial_strain_end))
+    throw std::invalid_argument("drained triaxial path: the end axial strain must be finite");
+  if (!(path.stress_tolerance > 0.0))
+    throw std::invalid_argument("drained triaxial path: the stress tolerance must be positive");
+  const ModelDescription& description = behaviour.description();
+  if (static_cast<int>(inputs.size()) != slot_components(description.initial_inputs()))
+    throw std::invalid_argument("drained triaxial path: " + std::to_string(inputs.size()) +
+                                " initial inputs given, model '" + description.name() +
+                                "' takes " +
+                                std::to_string(slot_components(description.initial_inputs())));
+
+  const double sigma_3 = path.lateral_stress;
+  DriverPath result;
+  DriverPoint point;
+  point.state.assign(static_cast<std::size_t>(slot_components(description.state())), 0.0);
+  point.stress = behaviour.initial_state(sigma_3 * Eigen::Matrix3d::Identity(), inputs.data(),
+                                         point.state.data());
+  result.points.push_back(point);
+
+  const double d_axial = path.axial_strain_end / path.steps;
+  Eigen::Vector2d lateral = Eigen::Vector2d::Zero();  // the last increment's, the next's guess
+  std::vector<double> end_state(point.state.size());
+  for (int step = 1; step <= path.steps; ++step) {
+    const DriverPoint& start = result.points.back();
+    Eigen::Matrix3d increment = Eigen::Matrix3d::Zero();
+    increment(2, 2) = d_axial;
+    PointUpdate update;
+    bool converged = false;
+    int iterations = 0;
+    for (; iterations <= path.max_newton_iterations; ++iterations) {
+      increment(0, 0) = lateral(0);
+      increment(1, 1) = lateral(1);
+      update = behaviour.update(start.stress, start.state.data(), increment, end_state.data());
+      if (update.status == UpdateStatus::kFailed) break;
+      const Eigen::Vector2d residual(update.stress(0, 0) - sigma_3, update.stress(1, 1) - sigma_3);
+      const double scale = std::max(update.stress.trace() / 3.0, sigma_3);
+      if (residual.lpNorm<Eigen::Infinity>() <= path.stress_tolerance * scale) {
+        converged = true;
+        break;
+      }
+      // d sigma_ii / d eps_jj at row 3 i + i, column 3 j + j (descriptor.h, PointUpdate).
+      Eigen::Matrix2d jacobian;
+      jacobian << update.tangent(0, 0), update.tangent(0, 4), update.tangent(4, 0),
+          update.tangent(4, 4);
+      const Eigen::FullPivLU<Eigen::Matrix2d> lu(jacobian);
+      if (!lu.isInvertible()) break;
+      lateral -= lu.solve(residual);
+    }
+    if (!converged) {
+      result.message = update.status == UpdateStatus::kFailed
+                           ? "the update failed at step " + std::to_string(step) + ": " +
+                                 update.message
+                           : "no lateral strain holds sigma_3 at step " + std::to_string(step) +
+                                 " (Newton did not converge)";
+      return result;
+    }
+    DriverPoint next;
+    next.strain = start.strain + increment;
+    next.stress = update.stress;
+    next.state = end_state;
+    next.status = update.status;
+    next.newton_iterations = iterations;
+    result.points.push_back(std::move(next));
+  }
+  result.completed = true;
+  return result;
+}
+
+}  // namespace model
