@@ -133,31 +133,6 @@ int main(int argc, char** argv) {
   calibrate->add_option("-o,--output", calibrate_options.output_folder,
                         "folder for parameters.json, the curves and summary.md")
       ->required();
-  calibrate->add_option("--stages", calibrate_options.stages,
-                        "all | csl | elastic | fabric | plastic | joint")
-      ->check(CLI::IsMember({"all", "csl", "elastic", "fabric", "plastic", "joint"}))
-      ->capture_default_str();
-  calibrate->add_option("--starts", calibrate_options.starts,
-                        "starts of the plastic and joint stages (the first from the staged "
-                        "values, the others seeded)")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  calibrate->add_option("--seed", calibrate_options.seed, "seed of the extra starts")
-      ->capture_default_str();
-  calibrate->add_option("--loss", calibrate_options.loss, "robust loss: none | huber | cauchy")
-      ->check(CLI::IsMember({"none", "huber", "cauchy"}))
-      ->capture_default_str();
-  calibrate->add_option("--points", calibrate_options.max_points,
-                        "series rows per test used in the fit")
-      ->check(CLI::Range(3, 100000))
-      ->capture_default_str();
-  calibrate->add_option("--max-strain-step", calibrate_options.max_strain_step,
-                        "largest axial-strain increment of the fit's path, splitting longer gaps "
-                        "between its rows (0: the rows only; the path error in q/p falls with its "
-                        "square, within 1e-3 of a converged path at the default)")
-      ->check(CLI::Range(0.0, 0.1))
-      ->capture_default_str();
-  calibrate->add_flag("-v,--verbose", calibrate_options.verbose, "print the Ceres iterations");
   sffcal::add_calibrate_options(*calibrate, calibrate_options);
 #endif
 
@@ -198,18 +173,7 @@ int main(int argc, char** argv) {
     if (calibrate->parsed()) {
       std::string command_line;
       for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
-      const sffcal::FitKind kind = sffcal::fit_kind(calibrate_options.model);
-      if (kind == sffcal::FitKind::kNetwork)
-        for (const char* name : sffcal::kAcstOnlyOptions)
-          if (calibrate->count(name) > 0)
-            throw std::invalid_argument(std::string(name) +
-                                        " applies to the ACST fit only, not to --model network");
-      if (kind == sffcal::FitKind::kAnyModel)
-        for (const char* name : sffcal::kNotReadByAnyModelFit)
-          if (calibrate->count(name) > 0)
-            throw std::invalid_argument(std::string(name) + " does not apply to --model " +
-                                        calibrate_options.model + " (its fit reads -o, "
-                                        "--hold-out, --points and -v)");
+      calibrate_options.given = sffcal::given_settings(*calibrate);
       sffcal::check_output_folder(calibrate_options.output_folder);
       return sffcal::calibrate_command(calibrate_runs, calibrate_options, command_line);
     }

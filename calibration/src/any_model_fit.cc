@@ -18,13 +18,17 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-void check_test(const TestData& test) {
+}  // namespace
+
+void check_any_model_test(const TestData& test) {
   if (test.path != TestPath::kDrainedCompression)
     throw std::invalid_argument("test '" + test.name + "': the fit of any model follows drained "
                                 "compression, not " + std::string(to_string(test.path)));
   if (test.axial_strain.size() < 2)
     throw std::invalid_argument("test '" + test.name + "': fewer than two series rows");
 }
+
+namespace {
 
 // The initial inputs of a test's specimen: its void ratio where the model takes one, zero for
 // every other slot (an isotropic specimen), as fe-check gives them (docs/fe.md).
@@ -108,7 +112,7 @@ AnyModelTestError test_error(const model::ModelDescription& description,
 AnyModelCurve any_model_curve(const model::ModelDescription& description,
                               const model::ParameterValues& values, const TestData& test,
                               int driver_steps) {
-  check_test(test);
+  check_any_model_test(test);
   const std::unique_ptr<model::Behaviour> behaviour =
       description.make(values.constants, values.parameters);
   model::DrainedTriaxialPath path;
@@ -146,14 +150,12 @@ AnyModelCurve any_model_curve(const model::ModelDescription& description,
 
 AnyModelFitResult fit_any_model(const model::ModelDescription& description,
                                 const std::vector<TestData>& fitted,
-                                const std::vector<TestData>& held_out,
                                 const AnyModelFitOptions& options) {
   if (fitted.empty()) throw std::invalid_argument("the fit needs at least one test");
   if (options.max_points < 1 || options.driver_steps < 1 || options.max_iterations < 1 ||
       !(options.eta_scale > 0.0) || !(options.volumetric_scale > 0.0))
     throw std::invalid_argument("the fit's points, steps, iterations and scales must be positive");
-  for (const auto* list : {&fitted, &held_out})
-    for (const TestData& t : *list) check_test(t);
+  for (const TestData& t : fitted) check_any_model_test(t);
   const std::vector<model::ParameterInfo>& table = description.parameters();
   const std::size_t n = table.size();
   if (n == 0)
@@ -220,11 +222,18 @@ AnyModelFitResult fit_any_model(const model::ModelDescription& description,
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.usable = summary.IsSolutionUsable();
   result.termination = summary.BriefReport();
-  for (const auto* list : {&fitted, &held_out})
-    for (const TestData& t : *list)
-      result.errors.push_back(
-          test_error(description, result.values, t, list == &fitted, options.driver_steps));
+  result.errors = any_model_errors(description, result.values, fitted, true, options.driver_steps);
   return result;
+}
+
+std::vector<AnyModelTestError> any_model_errors(const model::ModelDescription& description,
+                                                const model::ParameterValues& values,
+                                                const std::vector<TestData>& tests, bool fitted,
+                                                int driver_steps) {
+  std::vector<AnyModelTestError> errors;
+  for (const TestData& t : tests)
+    errors.push_back(test_error(description, values, t, fitted, driver_steps));
+  return errors;
 }
 
 }  // namespace calibration

@@ -87,19 +87,19 @@ fi
 
 # Refusals, each naming the cause.
 out=$("$sffcal" calibrate "$runs/iso_dense_100kPa.h5" --start fit/parameters.json -o refused 2>&1)
-if [ $? -ne 0 ] && [[ $out == *"--start applies to --model network"* ]]; then
+if [ $? -ne 0 ] && [[ $out == *"--start does not apply to --model acst"* ]]; then
   echo "ok   --start with the ACST fit is refused by name"
 else
   echo "FAIL --start with ACST: $out"; failures=$((failures + 1))
 fi
 out=$("$sffcal" calibrate "$runs/iso_dense_100kPa.h5" --predicted-only -o refused 2>&1)
-if [ $? -ne 0 ] && [[ $out == *"--predicted-only applies to --model network"* ]]; then
+if [ $? -ne 0 ] && [[ $out == *"--predicted-only does not apply to --model acst"* ]]; then
   echo "ok   --predicted-only with the ACST fit is refused by name"
 else
   echo "FAIL --predicted-only with ACST: $out"; failures=$((failures + 1))
 fi
 out=$("$sffcal" calibrate --model network "$runs/iso_dense_100kPa.h5" --stages joint -o refused 2>&1)
-if [ $? -ne 0 ] && [[ $out == *"--stages applies to the ACST fit only"* ]]; then
+if [ $? -ne 0 ] && [[ $out == *"--stages does not apply to --model contact_network"* ]]; then
   echo "ok   --stages with --model network is refused by name"
 else
   echo "FAIL --stages with --model network: $out"; failures=$((failures + 1))

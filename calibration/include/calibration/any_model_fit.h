@@ -46,16 +46,25 @@ struct AnyModelFitResult {
   int iterations = 0;
   bool usable = false;            ///< Ceres' verdict on the solution
   std::string termination;        ///< Ceres' brief report
-  std::vector<AnyModelTestError> errors;  ///< fitted tests, then held-out ones
+  std::vector<AnyModelTestError> errors;  ///< fitted tests (then held-out ones: any_model_errors)
 };
+
+/// Throws std::invalid_argument naming a test that is not a drained triaxial compression with at
+/// least two series rows, the tests this fit follows.
+void check_any_model_test(const TestData& test);
 
 /// Fits `description`'s parameters to the tests (each a drained triaxial compression from an
 /// isotropic stress). Throws std::invalid_argument for a test on another path, no test, a start
 /// or constants of the wrong length or outside the ranges.
 AnyModelFitResult fit_any_model(const model::ModelDescription& description,
                                 const std::vector<TestData>& fitted,
-                                const std::vector<TestData>& held_out,
                                 const AnyModelFitOptions& options = {});
+
+/// Each test's errors with the given values (`fitted` says which role they had).
+std::vector<AnyModelTestError> any_model_errors(const model::ModelDescription& description,
+                                                const model::ParameterValues& values,
+                                                const std::vector<TestData>& tests, bool fitted,
+                                                int driver_steps = AnyModelFitOptions{}.driver_steps);
 
 /// The model curve of a test with the given values, at the test's series rows: q/p and eps_v
 /// (NaN past the row where the model's path stopped, which `message` then names).
