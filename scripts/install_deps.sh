@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   openmpi-bin  # mpiexec, for the distributed-mesh test
+  dpkg-dev gfortran libspooles-dev libarpack2-dev liblapack-dev  # CalculiX with the UMAT (build_calculix.sh)
   python3 python3-h5py python3-markdown python3-matplotlib python3-numpy
 )
 

@@ -4,6 +4,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install_deps.sh
 ./scripts/build.sh
+# CalculiX built from Debian's source with the UMAT, for the CalculiX tests (docs/fe.md).
+./scripts/build_calculix.sh build
 # CTest runs nproc tests at once, each with OpenMP on every core: idle OpenMP threads must sleep,
 # not spin, or the oversubscribed cores spend their time spinning.
 export OMP_WAIT_POLICY=PASSIVE

@@ -3,7 +3,10 @@
 #include "fe_check_command.h"
 
 #include <cstdio>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace sffcal {
 
@@ -26,6 +29,34 @@ int fe_check_command(const FeCheckOptions& options) {
               "scripts/plot_fe_check.py %s\n",
               out.c_str(), out.c_str(), out.c_str());
   return result.exit_code();
+}
+
+std::vector<int> parse_element_list(const std::string& text) {
+  std::vector<int> elements;
+  std::istringstream parts(text);
+  std::string part;
+  while (std::getline(parts, part, ',')) {
+    const std::size_t dash = part.find('-');
+    std::size_t used_first = 0, used_last = 0;
+    int first = 0, last = 0;
+    try {
+      first = std::stoi(part.substr(0, dash), &used_first);
+      last = dash == std::string::npos ? first : std::stoi(part.substr(dash + 1), &used_last);
+    } catch (const std::exception&) {
+      used_first = 0;
+    }
+    const bool whole = used_first == (dash == std::string::npos ? part.size() : dash) &&
+                       (dash == std::string::npos || used_last == part.size() - dash - 1);
+    if (!whole || first < 1 || last < first || last - first > 10000000)
+      throw std::invalid_argument("--elements: '" + part + "' is not N or N-M (1 <= N <= M)");
+    for (int e = first; e <= last; ++e) elements.push_back(e);
+  }
+  return elements;
+}
+
+int umat_cards_command(const fe_model::UmatCardOptions& options) {
+  std::fputs(fe_model::umat_cards(options).c_str(), stdout);
+  return 0;
 }
 
 }  // namespace sffcal

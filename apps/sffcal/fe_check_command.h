@@ -1,9 +1,14 @@
 // The fe-check subcommand: fe_model::run_fe_check (fe_model/fe_check.h, docs/fe.md) with its
-// progress and its pass/fail table on stdout. main.cc parses the flags into the options.
+// progress and its pass/fail table on stdout; and umat-cards, the UMAT's input-deck cards
+// (fe_model/umat_cards.h). main.cc parses the flags into the options.
 #ifndef SFFCAL_FE_CHECK_COMMAND_H_
 #define SFFCAL_FE_CHECK_COMMAND_H_
 
+#include <string>
+#include <vector>
+
 #include "fe_model/fe_check.h"
+#include "fe_model/umat_cards.h"
 
 namespace sffcal {
 
@@ -12,6 +17,12 @@ using FeCheckOptions = fe_model::FeCheckOptions;
 /// Runs the checks; returns 0 if every check passed, 2 if only FE-vs-DEM checks failed, 1 if a
 /// verification check failed or a run did not complete. Throws for unreadable input files.
 int fe_check_command(const FeCheckOptions& options);
+
+/// Element numbers from "1-8,12,20-27"; throws std::invalid_argument naming a bad part.
+std::vector<int> parse_element_list(const std::string& text);
+
+/// Prints fe_model::umat_cards on stdout; returns 0.
+int umat_cards_command(const fe_model::UmatCardOptions& options);
 
 }  // namespace sffcal
 

@@ -115,6 +115,40 @@ int main(int argc, char** argv) {
   bool fe_check_no_mesh = false;
   fe_check->add_flag("--no-mesh", fe_check_no_mesh, "skip the 2x2x4 mesh (the slow run)");
   fe_check->add_flag("-v,--verbose", fe_check_options.verbose, "print the Newton logs");
+
+  fe_model::UmatCardOptions cards_options;
+  std::string cards_elements;
+  CLI::App* cards = app.add_subcommand(
+      "umat-cards", "Print the input-deck cards of a model's UMAT for CalculiX or Abaqus: "
+                    "*MATERIAL, *USER MATERIAL (PROPS from the parameter file and the start, "
+                    "eight a line, each named in a comment), *DEPVAR and *INITIAL CONDITIONS "
+                    "(docs/fe.md, \"CalculiX\")");
+  cards->add_option("--parameters", cards_options.parameters_path,
+                    "parameter file of any registered model")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cards->add_option("--dem", cards_options.dem_run,
+                    "start from this DEM run (sigma_3, e_0 and the model's initial state, as "
+                    "fe-check takes them); without it, a plain specimen")
+      ->check(CLI::ExistingFile);
+  cards->add_option("--pressure", cards_options.confining_pressure,
+                    "plain specimen: sigma_3 [Pa]")
+      ->capture_default_str();
+  cards->add_option("--void-ratio", cards_options.void_ratio, "plain specimen: e_0")
+      ->capture_default_str();
+  cards->add_option("--a-cs", cards_options.a_cs,
+                    "ACST: DEM fabric normalisation (default: the parameter file's, else 0.827)");
+  cards->add_option("--elements", cards_elements,
+                    "elements whose integration points get the initial stress, e.g. 1-27 "
+                    "(none: no *INITIAL CONDITIONS card)");
+  cards->add_option("--points", cards_options.integration_points,
+                    "integration points per element (C3D8, C3D20R: 8; C3D8R: 1)")
+      ->capture_default_str();
+  cards->add_option("--client", cards_options.client,
+                    "calculix (material ABAQUS<NAME>: CalculiX strips ABAQUS before its UMAT sees "
+                    "the name) or abaqus")
+      ->check(CLI::IsMember({"calculix", "abaqus"}))
+      ->capture_default_str();
 #endif
 
 #ifdef SFFCAL_HAVE_CALIBRATE
@@ -183,6 +217,11 @@ int main(int argc, char** argv) {
       fe_check_options.mesh = !fe_check_no_mesh;
       sffcal::check_output_folder(fe_check_options.output_folder);
       return sffcal::fe_check_command(fe_check_options);
+    }
+    if (cards->parsed()) {
+      if (!cards_elements.empty())
+        cards_options.elements = sffcal::parse_element_list(cards_elements);
+      return sffcal::umat_cards_command(cards_options);
     }
 #endif
   } catch (const std::exception& e) {

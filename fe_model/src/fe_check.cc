@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "calibration/network_test_data.h"
 #include "fe_model/acst_check.h"
 #include "fe_model/model_material.h"
+#include "fe_model/model_start.h"
 #include "fe_model/network_material.h"
 #include "model/acst_model.h"
 #include "model/network_path.h"
@@ -44,7 +44,6 @@ struct DemRun {
   std::string name;
   double confining_pressure = 0.0;  // /series/sigma_3 of the first row
   double void_ratio = 0.0;          // /series/void_ratio of the first row
-  std::optional<double> initial_a_c;  // /analysis/sff/a_c at the smallest axial strain
   Curve curve;   // the series
   Curve fabric;  // the /analysis/sff rows (with the fabric invariant)
 };
@@ -83,13 +82,10 @@ DemRun dem_run(const runfile::DemTest& test, const std::string& path, double a_c
     const runfile::DemTestSff& f = test.sff;
     run.fabric.label = "dem_fabric";
     run.fabric.completed = true;
-    std::size_t first = 0;
     for (std::size_t i = 0; i < f.axial_strain.size(); ++i) {
       const double fabric = model::acst::kSqrtTwoThirds * f.a_c[i] / a_cs;  // A_DEM : n_c / a_cs
       run.fabric.points.push_back(curve_point(f.axial_strain[i], kNone, f.p[i], f.q[i], f.void_ratio[i], fabric));
-      if (f.axial_strain[i] < f.axial_strain[first]) first = i;
     }
-    run.initial_a_c = f.a_c[first];
   }
   return run;
 }
@@ -211,16 +207,8 @@ void write_summary(const fs::path& out_folder, const std::vector<FeCheckRow>& ch
 Check acst_check(const FeCheckOptions& options, const model::ParameterValues& values) {
   // Parameters: calibration's reader only; a_cs is not a model parameter (acst-model.md).
   const model::acst::Parameters<double> parameters = model::acst::parameters_of(values);
-  double a_cs = kDefaultAcs;
-  std::string a_cs_source = "default (dense_100kPa_2000 critical state, docs/fe.md)";
-  if (options.a_cs > 0.0) {
-    a_cs = options.a_cs;
-    a_cs_source = "--a-cs";
-  } else if (const std::optional<double> from_file =
-                 fabric_normalisation(values, options.parameters_path)) {
-    a_cs = *from_file;
-    a_cs_source = "parameter file";
-  }
+  const auto [a_cs, a_cs_source] =
+      acst_fabric_normalisation(values, options.parameters_path, options.a_cs);
   TriaxialLoading loading;
   loading.axial_strain_end = options.max_strain;
   loading.n_steps = options.steps;
@@ -234,11 +222,19 @@ Check acst_check(const FeCheckOptions& options, const model::ParameterValues& va
              "tolerance %.1e; output in %s/",
              options.max_strain, options.steps, loading.integration.tolerance,
              options.output_folder.c_str())};
-  for (const std::string& path : options.dem_runs)
-    check.dem_runs.push_back(dem_run(runfile::read_dem_test(path), path, a_cs));
+  std::vector<ModelStart> starts;
+  for (const std::string& path : options.dem_runs) {
+    const runfile::DemTest run = runfile::read_dem_test(path);
+    check.dem_runs.push_back(dem_run(run, path, a_cs));
+    starts.push_back(dem_start(values, a_cs, run, path));
+  }
 
-  auto add_case = [&](const std::string& name, const AcstSpecimen& specimen,
-                      const std::string& fabric_source, const DemRun* dem) {
+  auto add_case = [&](const std::string& name, const ModelStart& start, const DemRun* dem) {
+    AcstSpecimen specimen;
+    specimen.confining_pressure = start.confining_pressure;
+    specimen.void_ratio = start.void_ratio;
+    specimen.fabric = model::tensor_from_slot(start.inputs.data() + 1);  // after void_ratio
+    const std::string& fabric_source = start.source;
     const double f0 = specimen.fabric(2, 2) - 0.5 * (specimen.fabric(0, 0) + specimen.fabric(1, 1));
     Case c;
     c.name = name;
@@ -253,23 +249,10 @@ Check acst_check(const FeCheckOptions& options, const model::ParameterValues& va
     c.dem = dem;
     check.cases.push_back(c);
   };
-  for (double p : options.pressures) {
-    AcstSpecimen specimen;
-    specimen.confining_pressure = p;
-    specimen.void_ratio = options.void_ratio;
-    add_case(pressure_name(p), specimen, "isotropic", nullptr);
-  }
-  for (const DemRun& run : check.dem_runs) {
-    AcstSpecimen specimen;
-    specimen.confining_pressure = run.confining_pressure;
-    specimen.void_ratio = run.void_ratio;
-    std::string fabric_source = "isotropic (no /analysis/sff: run 'sffcal sff' on the file first)";
-    if (run.initial_a_c) {
-      specimen.fabric = fabric_from_dem_anisotropy(*run.initial_a_c, a_cs);
-      fabric_source = "/analysis/sff a_c = " + format_value(*run.initial_a_c);
-    }
-    add_case(run.name, specimen, fabric_source, &run);
-  }
+  for (double p : options.pressures)
+    add_case(pressure_name(p), plain_start(values, p, options.void_ratio), nullptr);
+  for (std::size_t r = 0; r < starts.size(); ++r)
+    add_case(check.dem_runs[r].name, starts[r], &check.dem_runs[r]);
   return check;
 }
 
@@ -297,23 +280,32 @@ Check network_check(const FeCheckOptions& options, const model::ParameterValues&
   TriaxialLoading loading;
   loading.axial_strain_end = options.max_strain;
   loading.n_steps = options.steps;
-  std::vector<calibration::TestData> tests;
+  std::vector<ModelStart> starts;
   for (const std::string& path : options.dem_runs) {
     // The network's fabric invariant is a_c itself: A:n_c / a_cs with a_cs = sqrt(2/3).
     const runfile::DemTest run = runfile::read_dem_test(path);  // read once for both uses
     check.dem_runs.push_back(dem_run(run, path, model::acst::kSqrtTwoThirds));
-    tests.push_back(calibration::network::with_closing_normal_anisotropy(
-        calibration::test_data(run, path)));
+    starts.push_back(dem_start(values, 0.0, run, path));
   }
-  for (std::size_t r = 0; r < tests.size(); ++r) {
+  for (std::size_t r = 0; r < starts.size(); ++r) {
     const DemRun& dem = check.dem_runs[r];
-    const net::State<double> start = calibration::network::initial_state(tests[r]);
+    // The inputs: void_ratio, coordination, fabric, normal, tangential (the model's layout).
+    const double* inputs = starts[r].inputs.data();
     NetworkInitialState initial;
-    initial.void_ratio = start.void_ratio;
-    initial.coordination = start.coordination;
-    initial.fabric = start.fabric;
-    initial.normal = start.normal;
-    initial.tangential = start.tangential;
+    initial.void_ratio = inputs[0];
+    initial.coordination = inputs[1];
+    initial.fabric = model::tensor_from_slot(inputs + 2);
+    initial.normal = model::tensor_from_slot(inputs + 8);
+    initial.tangential = model::tensor_from_slot(inputs + 14);
+    // The state of the run's network (Lambda set from the initial stress below); the initial
+    // fabric is all inherent (Eq. N2d).
+    net::State<double> start;
+    start.lambda = 0.0;  // set from the element's initial stress by the driver
+    start.void_ratio = initial.void_ratio;
+    start.coordination = initial.coordination;
+    start.fabric = start.inherent = initial.fabric;
+    start.normal = initial.normal;
+    start.tangential = initial.tangential;
     const auto material = std::make_shared<const NetworkMaterial>(parameters, initial,
                                                                   youngs_modulus);
     Case c;
@@ -400,8 +392,7 @@ Check any_model_check(const FeCheckOptions& options, const model::ParameterValue
   const model::ModelDescription& description = model::find_model(values.model);
   const std::shared_ptr<const model::Behaviour> behaviour =
       description.make(values.constants, values.parameters);
-  const std::vector<model::Slot>& slots = description.initial_inputs();
-  const int void_ratio = model::slot_offset(slots, "void_ratio");
+  const bool void_ratio = model::slot_offset(description.initial_inputs(), "void_ratio") >= 0;
   Check check;
   check.header = {
       format("sffcal fe-check: %s parameters %s", description.name().c_str(),
@@ -411,19 +402,22 @@ Check any_model_check(const FeCheckOptions& options, const model::ParameterValue
   TriaxialLoading loading;
   loading.axial_strain_end = options.max_strain;
   loading.n_steps = options.steps;
-  for (const std::string& path : options.dem_runs)
-    check.dem_runs.push_back(
-        dem_run(runfile::read_dem_test(path), path, model::acst::kSqrtTwoThirds));
-  auto add_case = [&](const std::string& name, double pressure, double e0, const DemRun* dem) {
-    std::vector<double> inputs(static_cast<std::size_t>(model::slot_components(slots)), 0.0);
-    if (void_ratio >= 0) inputs[static_cast<std::size_t>(void_ratio)] = e0;
+  std::vector<ModelStart> starts;
+  for (const std::string& path : options.dem_runs) {
+    const runfile::DemTest run = runfile::read_dem_test(path);
+    check.dem_runs.push_back(dem_run(run, path, model::acst::kSqrtTwoThirds));
+    starts.push_back(dem_start(values, 0.0, run, path));
+  }
+  auto add_case = [&](const std::string& name, const ModelStart& start, const DemRun* dem) {
+    const double pressure = start.confining_pressure;
+    const std::vector<double> inputs = start.inputs;
     const auto material = std::make_shared<const ModelMaterial>(behaviour, inputs);
     Case c;
     c.name = name;
     c.confining_pressure = pressure;
-    c.description = void_ratio >= 0 ? format("sigma_3 = %.4g kPa, e_0 = %.4g, isotropic",
-                                             pressure / 1e3, e0)
-                                    : format("sigma_3 = %.4g kPa", pressure / 1e3);
+    c.description = void_ratio ? format("sigma_3 = %.4g kPa, e_0 = %.4g, %s", pressure / 1e3,
+                                        start.void_ratio, start.source.c_str())
+                               : format("sigma_3 = %.4g kPa", pressure / 1e3);
     c.driver = [=, &options] { return drive_point(*behaviour, inputs, pressure, options); };
     c.fe = [=](const TriaxialMeshOptions& mesh) {
       return run_fe_triaxial(*material, pressure, loading, mesh);
@@ -431,9 +425,10 @@ Check any_model_check(const FeCheckOptions& options, const model::ParameterValue
     c.dem = dem;
     check.cases.push_back(c);
   };
-  for (double p : options.pressures) add_case(pressure_name(p), p, options.void_ratio, nullptr);
-  for (const DemRun& run : check.dem_runs)
-    add_case(run.name, run.confining_pressure, run.void_ratio, &run);
+  for (double p : options.pressures)
+    add_case(pressure_name(p), plain_start(values, p, options.void_ratio), nullptr);
+  for (std::size_t r = 0; r < starts.size(); ++r)
+    add_case(check.dem_runs[r].name, starts[r], &check.dem_runs[r]);
   return check;
 }
 

@@ -53,6 +53,41 @@ void tensor_to_slot(const Eigen::Matrix3d& t, double* v) {
   for (int k = 0; k < 6; ++k) v[k] = t(kRow[k], kCol[k]);
 }
 
+std::vector<double> umat_props(const ModelDescription& d, const std::vector<double>& inputs,
+                               const std::vector<double>& constants,
+                               const std::vector<double>& parameters) {
+  if (static_cast<int>(inputs.size()) != slot_components(d.initial_inputs()) ||
+      constants.size() != d.constants().size() || parameters.size() != d.parameters().size())
+    throw std::invalid_argument("UMAT PROPS of model '" + d.name() + "': " +
+                                std::to_string(inputs.size()) + " inputs, " +
+                                std::to_string(constants.size()) + " constants and " +
+                                std::to_string(parameters.size()) + " parameters given, " +
+                                std::to_string(slot_components(d.initial_inputs())) + ", " +
+                                std::to_string(d.constants().size()) + " and " +
+                                std::to_string(d.parameters().size()) + " needed");
+  std::vector<double> props = inputs;
+  for (std::size_t i = 0; i < constants.size(); ++i)
+    if (!d.constants()[i].fixed()) props.push_back(constants[i]);
+  props.insert(props.end(), parameters.begin(), parameters.end());
+  return props;
+}
+
+std::vector<std::string> umat_props_names(const ModelDescription& d) {
+  static const char* const kComponents[6] = {"11", "22", "33", "12", "13", "23"};
+  std::vector<std::string> names;
+  for (const Slot& s : d.initial_inputs()) {
+    if (s.kind == Slot::kScalar) {
+      names.push_back(s.name);
+    } else {
+      for (const char* c : kComponents) names.push_back(std::string(s.name) + "_" + c);
+    }
+  }
+  for (const ParameterInfo& c : d.constants())
+    if (!c.fixed()) names.push_back(c.name);
+  for (const ParameterInfo& p : d.parameters()) names.push_back(p.name);
+  return names;
+}
+
 void rotate_state(const std::vector<Slot>& slots, const Eigen::Matrix3d& rotation, double* state) {
   for (const Slot& s : slots) {
     if (s.kind == Slot::kTensor) {

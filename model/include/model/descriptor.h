@@ -144,6 +144,15 @@ class ModelDescription {
                                           const std::vector<double>& parameters) const = 0;
 };
 
+/// UMAT PROPS for a model (the layout its UMAT body reads, docs/fe.md "Every model's UMAT"): the
+/// initial inputs, the constants that are not fixed, then the parameters in the order of the
+/// tables; and the name of each entry (a tensor input's components as NAME_11 .. NAME_23). Throws
+/// std::invalid_argument where a list has the wrong length.
+std::vector<double> umat_props(const ModelDescription& d, const std::vector<double>& inputs,
+                               const std::vector<double>& constants,
+                               const std::vector<double>& parameters);
+std::vector<std::string> umat_props_names(const ModelDescription& d);
+
 /// The registered models (registry.cc), and the one called `name`; throws std::invalid_argument
 /// listing the registered names where none is.
 const std::vector<const ModelDescription*>& registered_models();
