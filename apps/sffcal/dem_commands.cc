@@ -41,6 +41,11 @@ dem::TriaxialSummary shear(dem::Simulation& sim, const dem::RunConfig& config, r
   dem::TriaxialTest test(sim, config.triaxial);
   ProgressLine line;
   const dem::TriaxialSummary summary = test.run(&file, [&](const dem::TriaxialProgress& p) {
+    if (!p.warning.empty()) {
+      line.finish();
+      std::fflush(stdout);
+      std::fprintf(stderr, "sffcal: warning: %s\n", p.warning.c_str());
+    }
     char text[200];
     std::snprintf(text, sizeof(text), "axial strain %.4f / %.3f  q/p %.3f  %.0f steps/s  %s left",
                   p.axial_strain, p.target_strain, p.eta, p.steps_per_second,

@@ -59,7 +59,8 @@ std::string SimulationOptions::validate() const {
     error << "density_scaling must be >= 1, got " << density_scaling << "; ";
   if (!(max_overlap_ratio > 0.0 && max_overlap_ratio < 1.0))
     error << "max_overlap_ratio must lie in (0, 1), got " << max_overlap_ratio << "; ";
-  error << servo.validate();
+  // The servo's loop at this step (an explicit step is at most the critical one: checked at 1).
+  error << servo.validate(time_step > 0.0 ? 1.0 : time_step_safety);
   return error.str();
 }
 
@@ -509,7 +510,9 @@ void Simulation::integrate() {
     // Local damping acts on the unbalanced force, weight included (Cundall): a body resting on
     // its contacts has nothing to damp.
     Eigen::Vector3d f = P.force[b];
-    if constexpr (kGravity) f += (options_.density_scaling * P.mass[b]) * g;
+    // The true weight: density scaling slows the dynamics, not the statics (a bed's self-weight
+    // stress is the same at any scaling).
+    if constexpr (kGravity) f += P.mass[b] * g;
     if constexpr (kDamping) f = locally_damped(f, P.velocity[b], alpha);
     const Eigen::Vector3d acceleration = (inv_scale / P.mass[b]) * f;
     P.velocity[b] += kick * acceleration;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -306,6 +307,9 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
                                   const CheckpointExtras* resumed) {
   const auto start = std::chrono::steady_clock::now();
   const std::int64_t start_step = sim_.step_count();
+  // The inertial number's warning, said once per run with the next progress call.
+  std::string inertial_warning;
+  bool inertial_warned = false;
   double resumed_axial_stress = std::numeric_limits<double>::quiet_NaN();
   if (resumed) {
     const CheckpointExtras& x = *resumed;
@@ -386,7 +390,18 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     if (file) file->append_series(row);
     const double eta = row[column("eta")], eps_v = row[column("volumetric_strain")];
     worst_lateral_error_ = std::max(worst_lateral_error_, row[column("lateral_stress_error")]);
-    max_inertial_number_ = std::max(max_inertial_number_, row[column("inertial_number")]);
+    const double inertial = row[column("inertial_number")];
+    max_inertial_number_ = std::max(max_inertial_number_, inertial);
+    if (inertial > runfile::kQuasiStaticInertialNumber && !inertial_warned) {
+      char text[300];
+      std::snprintf(text, sizeof text,
+                    "inertial number %.3g at axial strain %.4f passes the quasi-static limit 1e-3 "
+                    "(I = strain rate x mean diameter x sqrt(density x scaling / p), docs/dem.md): "
+                    "lower engine.density_scaling or the strain rate",
+                    inertial, strain);
+      inertial_warning = text;
+      inertial_warned = true;
+    }
     if (direction_ * eta > direction_ * peak_eta_) {  // in extension the peak is the most negative
       peak_eta_ = eta;
       peak_eta_strain_ = axial_strain();
@@ -422,6 +437,8 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
                                   pr.steps_per_second
                             : 0.0;
       pr.eta = eta;
+      pr.warning = std::move(inertial_warning);
+      inertial_warning.clear();
       progress(pr);
     }
     if (done) {

@@ -1,12 +1,31 @@
 #include "dem/wall.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace dem {
 
-std::string ServoParameters::validate() const {
+double servo_spectral_radius(const ServoParameters& servo, double step_ratio) {
+  const double b = servo.blend, g = servo.gain;
+  if (servo.integral_time == 0.0) {  // z^2 + (b g - 2 + b) z + (1 - b)
+    Eigen::Matrix2d companion;
+    companion << -(b * g - 2.0 + b), -(1.0 - b), 1.0, 0.0;
+    return companion.eigenvalues().cwiseAbs().maxCoeff();
+  }
+  const double kappa = step_ratio / servo.integral_time;
+  // (z - 1)^2 (z - (1 - b)) + b g z ((1 + kappa) z - 1) = z^3 + c2 z^2 + c1 z + c0
+  const double c2 = -(3.0 - b) + b * g * (1.0 + kappa);
+  const double c1 = 1.0 + 2.0 * (1.0 - b) - b * g;
+  const double c0 = -(1.0 - b);
+  Eigen::Matrix3d companion;
+  companion << -c2, -c1, -c0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0;
+  return companion.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+std::string ServoParameters::validate(double step_ratio) const {
   std::ostringstream error;
   if (!(gain > 0.0 && gain <= 1.0)) error << "servo gain must lie in (0, 1] (got " << gain << "); ";
   if (!(max_speed > 0.0 && std::isfinite(max_speed)))
@@ -16,6 +35,19 @@ std::string ServoParameters::validate() const {
   if (!(integral_time == 0.0 || (integral_time >= 1.0 && std::isfinite(integral_time))))
     error << "servo integral_time must be 0 (off) or >= 1 critical step (got " << integral_time
           << "); ";
+  if (!error.str().empty()) return error.str();
+  const double radius = servo_spectral_radius(*this, step_ratio);
+  if (!(radius < 1.0 - 1e-12)) {
+    error << "servo gain " << gain << ", blend " << blend << " and integral_time " << integral_time
+          << " make the wall's loop unstable at a time step of " << step_ratio
+          << " critical steps (it amplifies a force error by " << radius << " per step)";
+    if (integral_time > 0.0) {
+      const double kappa = step_ratio / integral_time;
+      error << ": the blend must exceed " << kappa / (1.0 + kappa)
+            << "; raise servo.blend or servo.integral_time";
+    }
+    error << "; ";
+  }
   return error.str();
 }
 

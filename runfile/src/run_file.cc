@@ -342,7 +342,12 @@ std::string TestSummary::describe() const {
     << (reached_critical_state ? ", critical q/p " : ", final q/p (last window) ") << critical_eta
     << "; void ratio " << initial_void_ratio << " -> " << final_void_ratio
     << "; worst lateral stress error " << 100.0 * worst_lateral_error
-    << " %; max inertial number " << max_inertial_number << "; " << steps << " steps in "
+    << " %; max inertial number " << max_inertial_number
+    << (max_inertial_number > kQuasiStaticInertialNumber
+            ? " (WARNING: past the quasi-static limit 1e-3: lower the strain rate or the density "
+              "scaling)"
+            : "")
+    << "; " << steps << " steps in "
     << wall_seconds << " s";
   return s.str();
 }

@@ -121,5 +121,55 @@ TEST(Servo, RefusesANonPhysicalIntegralTime) {
   EXPECT_EQ(servo.validate(), "");
 }
 
+// The servo's validated range is its stable range: on a spring at rest with an initial force
+// error, settings just inside the derived bound (blend 1.05 kappa / (1 + kappa)) settle and are
+// accepted, settings just outside (0.95 of it) diverge and are refused, naming the blend; the
+// defaults settle at any step up to the critical one.
+TEST(Servo, TheValidatedRangeIsTheStableRangeOnASpring) {
+  // The force error after `steps` steps from an error of 1 N, the spring's rest position fixed.
+  auto settle = [](const ServoParameters& servo, double step_ratio, int steps) {
+    const double critical_step = 1e-3, dt = step_ratio * critical_step;
+    ServoState state;
+    double inward = 0.0, error = 1.0;
+    for (int n = 0; n < steps && std::isfinite(error); ++n) {
+      const double force = kTarget - 1.0 + kStiffness * inward;
+      error = kTarget - force;
+      inward += servo_displacement(servo, force, kTarget, kStiffness, dt, critical_step, state);
+    }
+    return std::abs(error);
+  };
+  for (double gain : {0.3, 0.8, 1.0})
+    for (double integral_time : {1.0, 10.0})
+      for (double step_ratio : {0.5, 1.0}) {
+        const double kappa = step_ratio / integral_time, bound = kappa / (1.0 + kappa);
+        ServoParameters servo;
+        servo.gain = gain;
+        servo.integral_time = integral_time;
+        servo.max_speed = 1e9;  // the cap never binds: the linear loop
+        const std::string where = "gain " + std::to_string(gain) + " integral_time " +
+                                  std::to_string(integral_time) + " ratio " +
+                                  std::to_string(step_ratio);
+        servo.blend = 1.05 * bound;
+        EXPECT_EQ(servo.validate(step_ratio), "") << where;
+        EXPECT_LT(settle(servo, step_ratio, 400000), 1e-6) << where;
+        servo.blend = 0.95 * bound;
+        EXPECT_NE(servo.validate(step_ratio).find("blend must exceed"), std::string::npos)
+            << where;
+        EXPECT_GT(settle(servo, step_ratio, 400000), 1e3) << where;  // diverging
+      }
+  const ServoParameters defaults;
+  for (double step_ratio : {0.1, 0.7, 1.0}) {
+    EXPECT_EQ(defaults.validate(step_ratio), "") << step_ratio;
+    EXPECT_LT(settle(defaults, step_ratio, 20000), 1e-9) << step_ratio;
+  }
+  // The review's unstable settings: blend 0.05 (defaults otherwise), and T_i = 1 with blend 0.3.
+  ServoParameters slow;
+  slow.blend = 0.05;
+  EXPECT_NE(slow.validate(0.7), "");
+  slow.blend = 0.3;
+  slow.integral_time = 1.0;
+  EXPECT_NE(slow.validate(0.7), "");
+}
+
 }  // namespace
 }  // namespace dem

@@ -207,6 +207,36 @@ TEST(Triaxial, InertialNumberUsesTheScaledDensity) {
   EXPECT_NEAR(i100 / i1 * std::sqrt(p100 / p1), 10.0, 1e-9);
 }
 
+// Past the quasi-static limit (I > 1e-3, here with the density scaled 100 times) the run says so
+// once, with the progress row where I first passes it, and the summary line marks it; a slow run
+// says nothing.
+TEST(Triaxial, WarnsOnceWhenTheInertialNumberPassesTheQuasiStaticLimit) {
+  const Simulation specimen = testing::compacted_specimen(40, 0.3, 5);
+  auto run = [&](double scaling, double rate, std::vector<std::string>* warnings) {
+    SimulationOptions options = specimen.options();
+    options.density_scaling = scaling;
+    Simulation sim(specimen.state(), specimen.contact_parameters(), options);
+    TriaxialOptions triaxial = fast_options();
+    triaxial.strain_rate = rate;
+    triaxial.max_axial_strain = 0.004;
+    triaxial.output_strain_interval = 0.001;
+    TriaxialTest test(sim, triaxial);
+    return test.run(nullptr, [&](const TriaxialProgress& p) {
+      if (!p.warning.empty()) warnings->push_back(p.warning);
+    });
+  };
+  std::vector<std::string> fast, slow;
+  const TriaxialSummary scaled = run(100.0, 100.0, &fast);
+  ASSERT_GT(scaled.max_inertial_number, runfile::kQuasiStaticInertialNumber);
+  ASSERT_EQ(fast.size(), 1u);
+  EXPECT_NE(fast[0].find("quasi-static limit"), std::string::npos) << fast[0];
+  EXPECT_NE(scaled.describe().find("WARNING"), std::string::npos) << scaled.describe();
+  const TriaxialSummary gentle = run(1.0, 10.0, &slow);
+  ASSERT_LT(gentle.max_inertial_number, runfile::kQuasiStaticInertialNumber);
+  EXPECT_TRUE(slow.empty());
+  EXPECT_EQ(gentle.describe().find("WARNING"), std::string::npos) << gentle.describe();
+}
+
 // The strain limit holds whatever the output interval: an interval larger than the limit (1.0
 // against 0.02) ends the test at the limit, with one row there, instead of shearing on to the
 // next output row (eps_a = 1 crushed the specimen).

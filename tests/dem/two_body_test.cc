@@ -64,6 +64,32 @@ TEST(SphereOnWall, SettlesAtWeightOverStiffness) {
   EXPECT_NEAR(sim.wall_forces()[0], m * 9.81, 1e-6 * m * 9.81);
 }
 
+// Density scaling slows the dynamics and leaves the statics: a column of spheres rests on the
+// floor with its true weight at scaling 1 and 16 (gravity acts on the true mass).
+TEST(SphereColumn, RestsWithItsTrueWeightAtAnyDensityScaling) {
+  const double r = 1e-3;
+  for (double scaling : {1.0, 16.0}) {
+    Particles p;
+    for (int k = 0; k < 4; ++k) p.add_body({r, 0.0}, kDensity, {0.0, 0.0, r + 2.0 * r * k});
+    std::vector<Wall> walls(1);  // floor at z = 0
+    walls[0].axis = 2;
+    ContactParameters law;
+    law.friction = 0.0;
+    law.normal_damping_ratio = 0.5;
+    SimulationOptions options;
+    options.gravity = {0.0, 0.0, -9.81};
+    options.density_scaling = scaling;
+    Simulation sim(std::move(p), walls, law, options);
+    sim.run(400000);
+    double weight = 0.0;
+    for (double m : sim.particles().mass) weight += m * 9.81;
+    EXPECT_NEAR(sim.wall_forces()[0], weight, 1e-6 * weight) << "density scaling " << scaling;
+    const double overlap = r - sim.particles().position[0].z();  // the lowest sphere on the floor
+    EXPECT_NEAR(overlap, weight / wall_normal_stiffness(law.youngs_modulus, r), 1e-5 * overlap)
+        << "density scaling " << scaling;
+  }
+}
+
 // A clump lying on a frictional floor with its axis along the slope; gravity tilted by theta.
 double slope_run(double theta, double mu, double seconds, double* acceleration) {
   const double r = 1e-3;

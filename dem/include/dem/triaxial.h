@@ -63,6 +63,9 @@ struct TriaxialProgress {
   double steps_per_second = 0.0;
   double seconds_left = 0.0;
   double eta = 0.0;   ///< q/p
+  /// Said once per run, at the first row whose inertial number passes
+  /// runfile::kQuasiStaticInertialNumber (what it is and what to change); empty otherwise.
+  std::string warning;
 };
 
 /// The names of the /series columns a triaxial run writes, in order.

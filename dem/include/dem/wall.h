@@ -47,8 +47,20 @@ struct ServoParameters {
   /// the integral action off (the purely proportional servo of the first versions).
   double integral_time = 10.0;
 
-  std::string validate() const;
+  /// The reasons these settings are refused ("" if none), at a time step of `step_ratio` critical
+  /// steps: each value in its range, and the loop stable (servo_spectral_radius < 1; with the
+  /// integral action that needs blend > kappa / (1 + kappa), kappa = step_ratio / integral_time).
+  std::string validate(double step_ratio = 1.0) const;
 };
+
+/// The spectral radius of the servo loop against a spring (the force error's amplification per
+/// step, the specimen at rest; < 1: the error decays): the largest |z| over the roots of
+///   (z - 1)^2 (z - (1 - b)) + b g z ((1 + kappa) z - 1),   kappa = step_ratio / integral_time,
+/// from d_{n+1} = d_n - m_n, I_n = I_{n-1} + kappa g d_n, m_n = b (g d_n + I_n) + (1 - b) m_{n-1}
+/// (d the force error over the stiffness, m the wall's move; servo_displacement without the cap);
+/// without integral action the quadratic (z - 1)(z - (1 - b)) + b g z. For g in (0, 1] it passes
+/// 1 at b = kappa / (1 + kappa) (docs/dem.md, "The servo's stable range").
+double servo_spectral_radius(const ServoParameters& servo, double step_ratio);
 
 /// What the servo carries from one step to the next, per wall.
 struct ServoState {

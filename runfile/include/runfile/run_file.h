@@ -70,6 +70,11 @@ struct RunMetadata {
   std::int64_t schema_version = kSchemaVersion;  ///< of the file it was read from
 };
 
+/// Above this inertial number a shear test is no longer quasi-static (GDR MiDi, Eur. Phys. J. E 14,
+/// 341, 2004; da Cruz et al., Phys. Rev. E 72, 021309, 2005). The DEM's I: docs/dem.md, "Inertial
+/// number".
+inline constexpr double kQuasiStaticInertialNumber = 1e-3;
+
 /// How a triaxial test ended (stored as attributes of /summary).
 struct TestSummary {
   bool reached_critical_state = false;  ///< else the maximum axial strain stopped it
