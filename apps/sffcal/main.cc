@@ -1,10 +1,14 @@
 // sffcal: the project's command-line front end. Each subcommand is one stage of the pipeline.
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 
 #include "dem_commands.h"
+#include "finite_options.h"
 #include "output_guard.h"
 #include "sff_command.h"
 #ifdef SFFCAL_HAVE_FE_CHECK
@@ -15,6 +19,12 @@
 #endif
 
 int main(int argc, char** argv) {
+  // OpenMP threads that wait by spinning take a shared machine's cores from other work, and lose
+  // their own when another process holds one (two threads ran 14 times slower than one). GNU
+  // OpenMP reads OMP_WAIT_POLICY when it loads, before main: where the user has not chosen, the
+  // program runs itself again with passive waiting (bench/RESULTS.md, "Threads on a busy machine").
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && setenv("OMP_WAIT_POLICY", "PASSIVE", 0) == 0)
+    execv("/proc/self/exe", argv);  // returns only where it could not: then run as we are
   CLI::App app{"sffcal " SFFCAL_VERSION
                ": from grain-scale DEM to a calibrated fabric-based soil model"};
   app.require_subcommand(1);
@@ -172,6 +182,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    sffcal::refuse_non_finite_options(app);
     // Outputs are checked before any work starts (an existing file needs --force; an output is
     // never an input; its folder must be writable).
     if (config->parsed()) {

@@ -1,4 +1,5 @@
 #include "dem/run_config.h"
+#include "sffcal/read_text_file.h"
 
 #include <toml++/toml.h>
 
@@ -287,11 +288,8 @@ RunConfig config_from_table(const toml::table& table, const std::string& toml_te
 }  // namespace
 
 RunConfig load_run_config(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("cannot read the config file " + path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  // A config is a few kB; 1 MB leaves room for comments and refuses /dev/zero.
+  const std::string text = sffcal::read_text_file(path, std::uintmax_t{1} << 20, "config file");
   const toml::table table = parse_toml(text, path);  // parsed once
   // An empty file (or one of comments only) would run every default, 1000 bodies included: more
   // likely a wrong or truncated file than a choice. The defaults are one command away.

@@ -6,19 +6,25 @@
 // and the contact-network model's (docs/network-model.md, "Parameter file"):
 //   {"model": "contact_network", "youngs_modulus": {"value": 1.5e8, "unit": "Pa"},
 //    "parameters": {"kappa": {"value": 133.5, "unit": "1"}, ...}, ...}
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
-#include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "model/acst_model.h"
 #include "model/descriptor.h"
 #include "model/network_model.h"
 #include "model/parameter_file.h"
 #include "parameter_vector.h"
+#include "sffcal/read_text_file.h"
 
 namespace model {
 
@@ -30,18 +36,53 @@ using Json = nlohmann::json;
   throw std::runtime_error("parameter file '" + path + "': " + what);
 }
 
-// The file's top-level object.
+// The file's top-level object: one JSON value and nothing after it, no key twice in an object
+// (nlohmann keeps the last of a duplicate silently), from a regular file of at most 64 MB.
 Json read_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) fail(path, "cannot be opened");
+  std::string text;
+  try {
+    text = sffcal::read_text_file(path, std::uintmax_t{64} << 20, "parameter file");
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  std::vector<std::set<std::string>> keys;  // of each object being read
+  std::string duplicate;
+  const Json::parser_callback_t note_keys = [&](int, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::object_start) {
+      keys.emplace_back();
+    } else if (event == Json::parse_event_t::object_end) {
+      keys.pop_back();
+    } else if (event == Json::parse_event_t::key && !keys.empty() &&
+               !keys.back().insert(parsed.get<std::string>()).second && duplicate.empty()) {
+      duplicate = parsed.get<std::string>();
+    }
+    return true;
+  };
   Json root;
   try {
-    in >> root;
+    root = Json::parse(text, note_keys);  // strict: trailing content is an error
   } catch (const Json::exception& e) {  // syntax errors and numbers out of range (1e400)
     fail(path, std::string("is not valid JSON: ") + e.what());
   }
+  if (!duplicate.empty()) fail(path, "key '" + duplicate + "' appears twice in one object");
   if (!root.is_object()) fail(path, "the top level must be an object");
   return root;
+}
+
+// The edit distance of two names (Levenshtein), for the nearest valid name of a misspelt one.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
 }
 
 // Adds the members of extra_json_object (a JSON object text; "" adds nothing) at the top level.
@@ -128,6 +169,30 @@ ParameterValues read_parameter_file(const std::string& path, const std::string& 
   for (const ParameterInfo& p : description->parameters())
     values.parameters.push_back(
         read_value(root["parameters"], p.name, std::string("parameters.") + p.name, p, path));
+  // A member of "parameters" that is not the model's is a misspelling (an optional parameter
+  // misspelt would otherwise be read at its value when absent), but for ACST's DEM fabric
+  // normalisation a_cs, which fe-check reads from there.
+  for (auto it = root["parameters"].begin(); it != root["parameters"].end(); ++it) {
+    const std::string& key = it.key();
+    const auto& table = description->parameters();
+    if (key == "a_cs" || std::any_of(table.begin(), table.end(),
+                                     [&](const ParameterInfo& p) { return key == p.name; }))
+      continue;
+    // Nearest first without case and underscores (nF: n_F), then as written.
+    auto folded = [](std::string text) {
+      text.erase(std::remove(text.begin(), text.end(), '_'), text.end());
+      for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      return text;
+    };
+    auto distance = [&](const ParameterInfo& p) {
+      return std::make_pair(edit_distance(folded(key), folded(p.name)), edit_distance(key, p.name));
+    };
+    const ParameterInfo* nearest = &table.front();
+    for (const ParameterInfo& p : table)
+      if (distance(p) < distance(*nearest)) nearest = &p;
+    fail(path, "'parameters." + key + "' is no parameter of the " + name +
+                   " model (nearest: '" + nearest->name + "')");
+  }
   try {
     description->validate(values.constants, values.parameters);
   } catch (const std::invalid_argument& e) {

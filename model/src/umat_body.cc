@@ -190,7 +190,10 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
     if (update.status == UpdateStatus::kUnreliable)
       report("unreliable update: " + update.message, noel, npt, pnewdt, update.step_ratio);
   } catch (const std::exception& e) {
-    for (int i = 0; i < n * n; ++i) ddsdde[i] = 0.0;
+    // DDSDDE is NTENS x NTENS only where NTENS is a layout the check accepts: a caller's NTENS of
+    // -100 must not become 10,000 writes.
+    if (n == 4 || n == 6)
+      for (int i = 0; i < n * n; ++i) ddsdde[i] = 0.0;
     report(d.umat_name() + ": " + e.what(), noel, npt, pnewdt);
   }
 }

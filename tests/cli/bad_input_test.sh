@@ -150,5 +150,24 @@ expect_failure "calibrate --range beyond a parameter's physical range" \
 expect_failure "calibrate --range with a name the fit does not know" "unknown parameter 'n_x'" \
   "$sffcal" calibrate small.toml -o fit --range n_x=0:1
 
+# Second round (issue 51): inputs that are not finite, not files, or not what they claim.
+expect_failure "a config that is a device (/dev/zero) is refused, not read until memory ends" \
+  "not a regular file" "$sffcal" prepare -c /dev/zero -o refused.h5
+for option in "--a-cs nan" "--dem-eta-tol nan" "--pressures 1e5,inf" "--max-strain 1e999"; do
+  expect_failure "fe-check $option: a numeric option that is not finite" "not a finite number" \
+    "$sffcal" fe-check --parameters "$examples/acst_toyoura.json" $option -o refused
+done
+printf '%s trailing' "$(cat "$examples/acst_toyoura.json")" > trailing.json
+expect_failure "a parameter file with content after its JSON" "expected end of input" \
+  "$sffcal" umat-cards --parameters trailing.json
+sed 's/"parameters": {/"parameters": {"G0": {"value": 99, "unit": "1"},/' \
+  "$examples/acst_toyoura.json" > duplicate.json
+expect_failure "a parameter file with a key twice (the last silently won)" "appears twice" \
+  "$sffcal" umat-cards --parameters duplicate.json
+sed 's/"parameters": {/"parameters": {"nF": {"value": 5, "unit": "1"},/' \
+  "$examples/acst_toyoura.json" > misspelt.json  # n_F is optional: read as 0 before
+expect_failure "a misspelt optional parameter, named with the nearest one" "nearest: 'n_F'" \
+  "$sffcal" umat-cards --parameters misspelt.json
+
 echo "$cases bad inputs, $failures check(s) failed"
 exit $((failures > 0))

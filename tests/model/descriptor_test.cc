@@ -172,6 +172,26 @@ TEST(ModelInterface, TheThirdModelRunsThroughTheUmat) {
 
 // PNEWDT as FE codes pass it: a value <= 0 on entry (CalculiX's -1) is no request of the code's
 // own, so a failure asks for a smaller increment all the same, and a clean update leaves it.
+// A caller's NTENS that is no layout (negative, zero, huge) is refused by name through PNEWDT, and
+// nothing is written past the arrays a 3D element passes (they are guarded by sentinels here).
+TEST(ModelInterface, AnNtensThatIsNoLayoutIsRefusedWithoutWritingPastTheArrays) {
+  for (int ntens : {-100, -1, 0, 5, 1000000}) {
+    double stress[6 + 2] = {}, ddsdde[36 + 2], statev[32] = {}, zero[64] = {}, rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    for (double& x : ddsdde) x = 7.0;  // sentinels
+    const std::vector<double> props = {2.5e8, 0.2};
+    int ndi = 3, nshr = 3, nstatv = 32, nprops = 2, one = 1;
+    double pnewdt = 1.0;
+    const std::string name = "LINEAR_ELASTIC";
+    umat_(stress, statev, ddsdde, zero, zero, zero, zero, zero, zero, zero, zero, zero, zero, zero,
+          zero, zero, zero, zero, name.c_str(), &ndi, &nshr, &ntens, &nstatv, props.data(), &nprops,
+          zero, rot, &pnewdt, zero, rot, rot, &one, &one, &one, &one, &one, &one, name.size());
+    EXPECT_LE(pnewdt, 0.5) << "NTENS " << ntens;
+    for (double x : ddsdde) EXPECT_EQ(x, 7.0) << "NTENS " << ntens;
+    EXPECT_NE(std::string(sffcal_umat_last_message()).find("NTENS"), std::string::npos)
+        << sffcal_umat_last_message();
+  }
+}
+
 TEST(ModelInterface, AFailureAsksForASmallerIncrementWhateverPnewdtCameIn) {
   Point pt{"LINEAR_ELASTIC", {2e8, 0.25}};
   pt.pnewdt_in = -1.0;
