@@ -108,6 +108,17 @@ void ContactList::build_cell_grid(const Particles& particles, double cell_size) 
   cell_size = std::max(cell_size, std::cbrt(extent.prod() / max_cells));
   cell_size_ = cell_size;
   grid_origin_ = lo;
+  // A scene a million cells long (a body at 1e20 m in a packing row or an edited checkpoint)
+  // is no granular assembly; refused before the cell count overflows an int.
+  constexpr double kMaxCellsPerAxis = 1e6;
+  for (int k = 0; k < 3; ++k)
+    if (!((hi[k] - lo[k]) / cell_size < kMaxCellsPerAxis)) {
+      std::ostringstream message;
+      message << "ContactList: the spheres span " << hi[k] - lo[k] << " m along axis " << k
+              << " (from " << lo[k] << " to " << hi[k] << " m), more than a million contact "
+              << "cells of " << cell_size << " m: a body lies far outside the specimen";
+      throw std::runtime_error(message.str());
+    }
   std::int64_t num_cells = 1;
   for (int k = 0; k < 3; ++k) {
     dims_[k] = std::max(1, static_cast<int>((hi[k] - lo[k]) / cell_size) + 1);

@@ -11,6 +11,7 @@
 #include "dem/packing.h"
 #include "dem/rigid_body.h"
 #include "sffcal/constants.h"
+#include "sffcal/read_text_file.h"
 
 namespace dem {
 namespace {
@@ -33,7 +34,7 @@ Eigen::Vector3d major_direction(const Eigen::Matrix3d& tensor, bool largest) {
 
 // A cell as the error message shows it: quoted, control characters and bytes beyond ASCII as \xNN
 // (a raw carriage return would overwrite the message on the terminal).
-std::string quoted(const std::string& cell) {
+std::string quoted_cell(const std::string& cell) {
   std::string out = "'";
   for (const unsigned char c : cell) {
     if (c >= 0x20 && c < 0x7f) {
@@ -90,8 +91,8 @@ Eigen::Matrix3d particle_axis_fabric(const Particles& particles) {
 
 Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
                            Eigen::Vector3d* hi, double max_overlap_ratio) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("cannot read the packing file " + path);
+  // A packing row is under 100 bytes: 1 GB holds ten million bodies, and refuses a device.
+  std::istringstream in(sffcal::read_text_file(path, std::uintmax_t{1} << 30, "packing file"));
   Particles particles;
   bool have_box = false, have_header = false;
   std::string line;
@@ -139,8 +140,8 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
       } catch (const std::exception&) {
         used = 0;
       }
-      if (value.empty() || used != value.size()) fail(quoted(cell) + " is not a number");
-      if (!std::isfinite(x)) fail(quoted(cell) + " is not finite");
+      if (value.empty() || used != value.size()) fail(quoted_cell(cell) + " is not a number");
+      if (!std::isfinite(x)) fail(quoted_cell(cell) + " is not finite");
       v.push_back(x);
     }
     if (v.size() != 7 && v.size() != 10) fail("a row needs 7 or 10 values, found " + std::to_string(v.size()));

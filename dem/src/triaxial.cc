@@ -324,18 +324,28 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
                                     "' is not finite");
       return it->second;
     };
-    height0_ = need("height0");
-    width0_[0] = need("width0_x");
-    width0_[1] = need("width0_y");
-    volume0_ = need("volume0");
-    next_output_ = need("next_output");
-    next_snapshot_ = need("next_snapshot");
-    next_checkpoint_ = need("next_checkpoint");
-    worst_lateral_error_ = need("worst_lateral_error");
+    // The references strains are measured against (zero: a test that never advances) and the
+    // counters' thresholds, checked as data from outside.
+    auto need_at_least = [&](const char* name, double low, bool strict) {
+      const double value = need(name);
+      if (strict ? !(value > low) : !(value >= low))
+        throw std::invalid_argument(std::string("triaxial: the checkpoint's '") + name + "' = " +
+                                    std::to_string(value) + " must be " +
+                                    (strict ? "above " : "at least ") + std::to_string(low));
+      return value;
+    };
+    height0_ = need_at_least("height0", 0.0, true);
+    width0_[0] = need_at_least("width0_x", 0.0, true);
+    width0_[1] = need_at_least("width0_y", 0.0, true);
+    volume0_ = need_at_least("volume0", 0.0, true);
+    next_output_ = need_at_least("next_output", 0.0, false);
+    next_snapshot_ = need_at_least("next_snapshot", 0.0, false);
+    next_checkpoint_ = need_at_least("next_checkpoint", 0.0, false);
+    worst_lateral_error_ = need_at_least("worst_lateral_error", 0.0, false);
     peak_eta_ = need("peak_eta");
     peak_eta_strain_ = need("peak_eta_strain");
-    max_inertial_number_ = need("max_inertial_number");
-    initial_void_ratio_ = need("initial_void_ratio");
+    max_inertial_number_ = need_at_least("max_inertial_number", 0.0, false);
+    initial_void_ratio_ = need_at_least("initial_void_ratio", 0.0, true);
     if (lateral_targets_follow_axial_stress(options_.path)) resumed_axial_stress = need("axial_stress");
     drive_platens();
     if (file) {

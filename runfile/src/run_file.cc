@@ -556,11 +556,22 @@ void RunFile::rewind_to_checkpoint() {
   impl_->guard("rewind to the checkpoint", [&] {
     if (!impl_->writable) throw std::runtime_error("the file is open read-only");
     h5::Handle group = h5::open_group(impl_->id(), kCheckpoint);
-    const auto rows = static_cast<std::size_t>(h5::read_int_attribute(group.get(), "series_length"));
+    // A checkpoint is written after its series rows and snapshots: it can only be behind them.
+    // Counts beyond them (an edited or foreign file) would grow /series to any length.
+    const std::int64_t rows = h5::read_int_attribute(group.get(), "series_length");
+    const std::int64_t kept = h5::read_int_attribute(group.get(), "num_snapshots");
+    if (rows < 0 || static_cast<std::uint64_t>(rows) > series_length())
+      throw std::runtime_error("the checkpoint's series_length " + std::to_string(rows) +
+                               " is not between 0 and the file's " +
+                               std::to_string(series_length()) + " series rows");
+    if (kept < 0 || kept > num_snapshots())
+      throw std::runtime_error("the checkpoint's num_snapshots " + std::to_string(kept) +
+                               " is not between 0 and the file's " +
+                               std::to_string(num_snapshots()) + " snapshots");
     h5::Handle series = h5::open_group(impl_->id(), "series");
-    for (const std::string& name : impl_->series_names) h5::truncate(series.get(), name, rows);
-    const auto kept = static_cast<int>(h5::read_int_attribute(group.get(), "num_snapshots"));
-    for (int k = num_snapshots() - 1; k >= kept; --k)
+    for (const std::string& name : impl_->series_names)
+      h5::truncate(series.get(), name, static_cast<std::size_t>(rows));
+    for (int k = num_snapshots() - 1; k >= static_cast<int>(kept); --k)
       H5Ldelete(impl_->id(), snapshot_name(k).c_str(), H5P_DEFAULT);
     impl_->flush();  // before anything reuses the space freed
     return 0;

@@ -99,6 +99,14 @@ with h5py.File(sys.argv[1], "r+") as f:
         g["first_sphere"][...] = s
     elif case == "nan_extra":
         g["extras"].attrs["height0"] = np.nan
+    elif case == "zero_height":
+        g["extras"].attrs["height0"] = 0.0
+    elif case == "negative_width":
+        g["extras"].attrs["width0_x"] = -1e-3
+    elif case == "series_ahead":
+        g.attrs["series_length"] = np.int64(10**9)
+    elif case == "snapshots_ahead":
+        g.attrs["num_snapshots"] = np.int64(-1)
     elif case == "snapshot_body":
         c = f["snapshots/000000/contacts"][:]
         c["body_a"][0] = 10**9
@@ -111,7 +119,9 @@ EOF
   }
   for c in short_mass:"mass has 57 entries" pair_index:"pair 0" wall_index:"wall candidate 0" \
            nan_position:"not finite" first_sphere:"outside the" \
-           nan_extra:"'height0' is not finite"; do
+           nan_extra:"'height0' is not finite" zero_height:"'height0' = 0" \
+           negative_width:"'width0_x' = -0.001" series_ahead:"series_length 1000000000" \
+           snapshots_ahead:"num_snapshots -1"; do
     name=${c%%:*}
     cp run.h5 "$name.h5"
     tamper "$name.h5" "$name"
@@ -168,6 +178,14 @@ sed 's/"parameters": {/"parameters": {"nF": {"value": 5, "unit": "1"},/' \
   "$examples/acst_toyoura.json" > misspelt.json  # n_F is optional: read as 0 before
 expect_failure "a misspelt optional parameter, named with the nearest one" "nearest: 'n_F'" \
   "$sffcal" umat-cards --parameters misspelt.json
+
+# A packing row with a finite but huge position: refused, naming the span (it crashed the grid).
+printf '# box: 0 0 0 1e21 6e-4 6e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n' > far.csv  # the body lies inside its box
+printf '1.2e-4,1.2e-4,1.2e-4,0,0.6,0.8,5e-05\n3e-4,3e-4,3e-4,0,0.6,0.8,5e-05\n1e20,3e-4,1.2e-4,0,0.6,0.8,5e-05\n' >> far.csv
+sed -e 's/^method = "compaction"/method = "csv"/' -e "s|^csv = \"\"|csv = \"$work/far.csv\"|" \
+  small.toml > far.toml
+expect_failure "a packing body at x = 1e20 m is refused, naming where" "far outside" \
+  "$sffcal" prepare -c far.toml -o far.h5
 
 echo "$cases bad inputs, $failures check(s) failed"
 exit $((failures > 0))
