@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "dem_commands.h"
 #include "finite_options.h"
@@ -190,19 +192,19 @@ int main(int argc, char** argv) {
       return sffcal::print_default_config(out_path);
     }
     if (prepare->parsed()) {
-      sffcal::check_new_output_file(out_path, {config_path}, force);
+      sffcal::check_new_run_file(out_path, {config_path}, force, false);
       return sffcal::prepare_command(config_path, out_path);
     }
     if (triaxial->parsed()) {
       if (resume) return sffcal::resume_command(out_path);
       if (config_path.empty() || specimen_path.empty())
         throw std::invalid_argument("triaxial needs --config and --specimen (or --resume)");
-      sffcal::check_new_output_file(out_path, {config_path, specimen_path}, force);
+      sffcal::check_new_run_file(out_path, {config_path, specimen_path}, force, true);
       return sffcal::triaxial_command(config_path, specimen_path, out_path);
     }
     if (dem->parsed()) {
-      sffcal::check_new_output_file(out_path, {config_path}, force);
-      sffcal::check_new_output_file(out_path + ".specimen.h5", {config_path}, force);
+      sffcal::check_new_run_file(out_path, {config_path}, force, true);
+      sffcal::check_new_run_file(out_path + ".specimen.h5", {config_path}, force, false);
       return sffcal::dem_command(config_path, out_path);
     }
     if (vtk->parsed()) {
@@ -220,6 +222,11 @@ int main(int argc, char** argv) {
       for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
       calibrate_options.given = sffcal::given_settings(*calibrate);
       sffcal::check_output_folder(calibrate_options.output_folder);
+      std::vector<std::string> inputs = calibrate_runs;
+      inputs.insert(inputs.end(), calibrate_options.held_out.begin(), calibrate_options.held_out.end());
+      if (!calibrate_options.settings.start_file.empty())
+        inputs.push_back(calibrate_options.settings.start_file);
+      sffcal::check_inputs_outside(calibrate_options.output_folder, inputs);
       return sffcal::calibrate_command(calibrate_runs, calibrate_options, command_line);
     }
 #endif
@@ -227,6 +234,9 @@ int main(int argc, char** argv) {
     if (fe_check->parsed()) {
       fe_check_options.mesh = !fe_check_no_mesh;
       sffcal::check_output_folder(fe_check_options.output_folder);
+      std::vector<std::string> inputs = fe_check_options.dem_runs;
+      inputs.push_back(fe_check_options.parameters_path);
+      sffcal::check_inputs_outside(fe_check_options.output_folder, inputs);
       return sffcal::fe_check_command(fe_check_options);
     }
     if (cards->parsed()) {

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -59,6 +60,37 @@ void check_new_output_file(const std::string& path, const std::vector<std::strin
   if (!writable_folder(folder))
     throw std::runtime_error("the folder of output '" + path + "' ('" + folder.string() +
                              "') is not a writable folder");
+}
+
+void check_new_run_file(const std::string& path, const std::vector<std::string>& inputs,
+                        bool force, bool with_series) {
+  std::vector<std::string> outputs = {path, path + ".partial"};
+  if (with_series) outputs.push_back(path + ".series.csv");
+  for (const std::string& output : outputs) {
+    check_new_output_file(output, inputs, force);
+    // A run file is made beside its name and renamed over it: only a regular file is ever
+    // replaced (--force renamed a new file over /dev/null before).
+    std::error_code error;
+    if (fs::exists(output, error) && !fs::is_regular_file(output, error))
+      throw std::runtime_error("output '" + output +
+                               "' is not a regular file (a device, FIFO or socket): it is never "
+                               "replaced; choose another output");
+  }
+}
+
+void check_inputs_outside(const std::string& folder, const std::vector<std::string>& inputs) {
+  std::error_code error;
+  const fs::path out = fs::weakly_canonical(folder, error);
+  if (error) return;
+  for (const std::string& input : inputs) {
+    const fs::path in = fs::weakly_canonical(input, error);
+    if (error) continue;
+    const auto [end, rest] = std::mismatch(out.begin(), out.end(), in.begin(), in.end());
+    if (end == out.end())
+      throw std::runtime_error("input '" + input + "' lies in the output folder '" + folder +
+                               "', whose files this command writes: move it or choose another "
+                               "folder");
+  }
 }
 
 void check_output_folder(const std::string& folder) {

@@ -14,6 +14,16 @@ namespace sffcal {
 void check_new_output_file(const std::string& path, const std::vector<std::string>& inputs,
                            bool force);
 
+/// The same for a run file and the files written beside it: PATH.partial (where it is made, renamed
+/// to PATH when complete) and, for a test (`with_series`), PATH.series.csv; and none of them may
+/// be anything but a regular file, even with `force` (a rename would replace a device or FIFO).
+void check_new_run_file(const std::string& path, const std::vector<std::string>& inputs,
+                        bool force, bool with_series);
+
+/// Throws std::runtime_error naming the input that lies in `folder`, whose files a command writes
+/// (fe-check's summary.csv given as its parameter file was overwritten before).
+void check_inputs_outside(const std::string& folder, const std::vector<std::string>& inputs);
+
 /// Throws std::runtime_error naming the path when `folder` exists but is not a writable folder,
 /// or does not exist and cannot be created because its nearest existing parent is not writable.
 void check_output_folder(const std::string& folder);

@@ -156,6 +156,19 @@ TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& option
         << "): raise strain_rate";
     throw std::invalid_argument(msg.str());
   }
+  // And at most one output interval, and a tenth of the whole test, per step: faster, the platens
+  // outrun the rows and the limit (strain_rate 1e9 ended at axial strain 32 against a limit of
+  // 0.02, with a negative void ratio).
+  const double per_step = options_.strain_rate * sim_.time_step();
+  const double most = std::min(options_.output_strain_interval, 0.1 * options_.max_axial_strain);
+  if (!(per_step <= most)) {
+    std::ostringstream msg;
+    msg << "triaxial: strain_rate " << options_.strain_rate << " /s at the time step "
+        << sim_.time_step() << " s strains the specimen by " << per_step
+        << " a step, more than the output interval or a tenth of max_axial_strain ("
+        << most << "): lower strain_rate";
+    throw std::invalid_argument(msg.str());
+  }
   initial_void_ratio_ = void_ratio();
   if (!(std::isfinite(initial_void_ratio_) && initial_void_ratio_ > 0.0 &&
         std::isfinite(mean_density_) && mean_density_ > 0.0)) {

@@ -187,5 +187,31 @@ sed -e 's/^method = "compaction"/method = "csv"/' -e "s|^csv = \"\"|csv = \"$wor
 expect_failure "a packing body at x = 1e20 m is refused, naming where" "far outside" \
   "$sffcal" prepare -c far.toml -o far.h5
 
+sed -e 's/^strain_rate = .*/strain_rate = 1e9/' small.toml > fast.toml
+expect_failure "strain_rate = 1e9 is refused, not run past its limit to a negative void ratio" \
+  "lower strain_rate" "$sffcal" triaxial -c fast.toml -s specimen.h5 -o fast.h5
+
+# Outputs that are not regular files, and the files a run writes beside its run file.
+mkfifo fifo.h5
+expect_failure "--force never replaces a FIFO (it replaced /dev/null before)" "not a regular file" \
+  "$sffcal" prepare -c small.toml -o fifo.h5 --force
+[ -p fifo.h5 ] && echo "ok   the FIFO is still a FIFO" || { echo "FAIL the FIFO was replaced"; failures=$((failures + 1)); }
+cp small.toml run2.h5.series.csv
+expect_failure "a file named like the run's series CSV is not overwritten without --force" \
+  "run2.h5.series.csv' exists" "$sffcal" triaxial -c small.toml -s specimen.h5 -o run2.h5
+cmp -s small.toml run2.h5.series.csv && echo "ok   it is left as it was" || { echo "FAIL it changed"; failures=$((failures + 1)); }
+echo "mine" > mine.h5.partial
+expect_failure "a user's own X.partial is not deleted without --force" "mine.h5.partial' exists" \
+  "$sffcal" prepare -c small.toml -o mine.h5
+grep -q mine mine.h5.partial && echo "ok   it is left as it was" || { echo "FAIL it was deleted"; failures=$((failures + 1)); }
+cp small.toml run3.h5.series.csv
+expect_failure "a config named like the run's series CSV is refused as an output, even with --force" \
+  "also an input" "$sffcal" triaxial -c run3.h5.series.csv -s specimen.h5 -o run3.h5 --force
+
+mkdir -p fe && cp "$examples/acst_toyoura.json" fe/summary.csv
+expect_failure "fe-check whose parameter file lies in its output folder (summary.csv was overwritten)" \
+  "lies in the output folder" "$sffcal" fe-check --parameters fe/summary.csv -o fe --no-mesh
+cmp -s "$examples/acst_toyoura.json" fe/summary.csv && echo "ok   it is left as it was" || { echo "FAIL it changed"; failures=$((failures + 1)); }
+
 echo "$cases bad inputs, $failures check(s) failed"
 exit $((failures > 0))
