@@ -125,6 +125,10 @@ int run_triaxial(const dem::RunConfig& config, const std::string& specimen_path,
   runfile::CheckpointExtras specimen_extras;
   dem::SimulationState state = [&] {
     runfile::RunFile specimen = runfile::RunFile::open(specimen_path);
+    if (specimen.metadata().kind != "specimen")
+      throw std::runtime_error(specimen_path + " is a " + specimen.metadata().kind +
+                               " run file, not a specimen (`sffcal prepare` writes one; `sffcal "
+                               "triaxial --resume` continues a test)");
     return dem::read_checkpoint(specimen, &specimen_extras);
   }();
   const double sigma3 = config.triaxial.confining_stress;

@@ -133,6 +133,7 @@ TriaxialTest::TriaxialTest(Simulation& simulation, const TriaxialOptions& option
   width0_[0] = extent(0);
   width0_[1] = extent(1);
   volume0_ = sim_.box_volume();
+  test_start_step_ = sim_.step_count();
   const GrainTotals totals = grain_totals(sim_.particles());
   solid_volume_ = totals.solid_volume;
   mean_density_ = totals.mass / totals.solid_volume;
@@ -310,6 +311,7 @@ CheckpointExtras TriaxialTest::extras() const {
           {"worst_lateral_error", worst_lateral_error_}, {"peak_eta", peak_eta_},
           {"peak_eta_strain", peak_eta_strain_}, {"max_inertial_number", max_inertial_number_},
           {"initial_void_ratio", initial_void_ratio_},
+          {"test_start_step", static_cast<double>(test_start_step_)},
           // What the last step left on the platens: the first lateral targets after a resume
           // (a restored engine has no wall forces until it steps).
           {"axial_stress", sim_.wall_stress(2)}};
@@ -359,6 +361,14 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     peak_eta_strain_ = need("peak_eta_strain");
     max_inertial_number_ = need_at_least("max_inertial_number", 0.0, false);
     initial_void_ratio_ = need_at_least("initial_void_ratio", 0.0, true);
+    // Checkpoints before this key counted the summary's steps from the resume.
+    if (x.count("test_start_step")) {
+      const double first = need_at_least("test_start_step", 0.0, false);
+      if (!(first <= static_cast<double>(sim_.step_count())))
+        throw std::invalid_argument("triaxial: the checkpoint's 'test_start_step' lies after its "
+                                    "step count");
+      test_start_step_ = static_cast<std::int64_t>(first);
+    }
     if (lateral_targets_follow_axial_stress(options_.path)) resumed_axial_stress = need("axial_stress");
     drive_platens();
     if (file) {
@@ -480,7 +490,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
   summary.final_void_ratio = void_ratio();
   summary.worst_lateral_error = worst_lateral_error_;
   summary.max_inertial_number = max_inertial_number_;
-  summary.steps = sim_.step_count() - start_step;
+  summary.steps = sim_.step_count() - test_start_step_;
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (file) file->write_summary(summary);
   return summary;

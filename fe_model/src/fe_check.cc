@@ -66,7 +66,22 @@ DemRun dem_run(const runfile::DemTest& test, const std::string& path, double a_c
     throw std::runtime_error(path + ": loading path " + test.loading_path() +
                              ": fe-check compares drained compression only");
   const runfile::DemTestSeries& s = test.series;
-  if (s.axial_strain.empty()) throw std::runtime_error(path + ": /series is empty");
+  // The run as data from outside: rows enough to compare with, finite, the strain rising.
+  if (s.axial_strain.size() < 2)
+    throw std::runtime_error(path + ": /series has " + std::to_string(s.axial_strain.size()) +
+                             " rows: fe-check compares at least two");
+  for (std::size_t i = 0; i < s.axial_strain.size(); ++i) {
+    for (const auto* column : {&s.axial_strain, &s.volumetric_strain, &s.p, &s.q, &s.void_ratio,
+                               &s.sigma_3})
+      if (i >= column->size() || !std::isfinite((*column)[i]))
+        throw std::runtime_error(path + ": /series row " + std::to_string(i) +
+                                 " has a value that is not finite (or a column is short)");
+    if (i > 0 && !(s.axial_strain[i] > s.axial_strain[i - 1]))
+      throw std::runtime_error(path + ": /series axial_strain does not rise at row " +
+                               std::to_string(i));
+    if (!(s.p[i] > 0.0))
+      throw std::runtime_error(path + ": /series p is not positive at row " + std::to_string(i));
+  }
   DemRun run;
   run.path = path;
   run.name = test.name;

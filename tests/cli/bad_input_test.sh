@@ -107,6 +107,14 @@ with h5py.File(sys.argv[1], "r+") as f:
         g.attrs["series_length"] = np.int64(10**9)
     elif case == "snapshots_ahead":
         g.attrs["num_snapshots"] = np.int64(-1)
+    elif case == "nan_p":
+        p = f["series/p"][:]
+        p[1] = np.nan
+        f["series/p"][...] = p
+    elif case == "falling_strain":
+        a = f["series/axial_strain"][:]
+        a[2] = a[1] - 1e-3
+        f["series/axial_strain"][...] = a
     elif case == "snapshot_body":
         c = f["snapshots/000000/contacts"][:]
         c["body_a"][0] = 10**9
@@ -128,6 +136,15 @@ EOF
     expect_failure "a checkpoint with a bad ${name//_/ } is refused by name" "${c#*:}" \
       "$sffcal" triaxial --resume -o "$name.h5"
   done
+  for c in nan_p:"not finite" falling_strain:"does not rise at row 2"; do
+    name=${c%%:*}
+    cp run.h5 "$name.h5"
+    tamper "$name.h5" "$name"
+    expect_failure "fe-check --dem with a run whose series has ${name//_/ } is refused" "${c#*:}" \
+      "$sffcal" fe-check --parameters "$examples/acst_toyoura.json" --dem "$name.h5" --no-mesh -o "fe_$name"
+  done
+  expect_failure "a triaxial run given as a specimen (-s) is refused" "not a specimen" \
+    "$sffcal" triaxial -c small.toml -s run.h5 -o from_run.h5
   cp run.h5 snapshot_body.h5
   tamper snapshot_body.h5 snapshot_body
   expect_failure "vtk of a snapshot whose contact names a missing body" "refers to body 1000000000" \

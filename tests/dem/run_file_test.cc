@@ -37,7 +37,7 @@ Simulation resume(const std::string& path, const Simulation& whole, const Triaxi
 }
 
 // The resumed run equals the uninterrupted one bit for bit: every series but the wall time,
-// the snapshots, the final positions. Removes both files.
+// the snapshots, the summary's step count and strain, the final positions. Removes both files.
 void expect_same_run(const std::string& whole_path, const Simulation& whole,
                      const std::string& resumed_path, const Simulation& resumed) {
   {
@@ -47,6 +47,9 @@ void expect_same_run(const std::string& whole_path, const Simulation& whole,
       EXPECT_EQ(a.series(name), b.series(name)) << name;
     }
     EXPECT_EQ(a.num_snapshots(), b.num_snapshots());
+    // The summary counts the test's steps, the resumed run's before the kill included.
+    EXPECT_EQ(a.read_summary().steps, b.read_summary().steps);
+    EXPECT_EQ(a.read_summary().axial_strain, b.read_summary().axial_strain);
     ASSERT_EQ(whole.particles().num_bodies(), resumed.particles().num_bodies());
     for (int k = 0; k < whole.particles().num_bodies(); ++k)
       ASSERT_EQ(whole.particles().position[k], resumed.particles().position[k]);

@@ -132,6 +132,9 @@ class TriaxialTest {
   double next_output_ = 0.0, next_snapshot_ = 0.0, next_checkpoint_ = 0.0;
   double worst_lateral_error_ = 0.0, peak_eta_ = 0.0, peak_eta_strain_ = 0.0;
   double max_inertial_number_ = 0.0, initial_void_ratio_ = 0.0;
+  /// The engine's step count when the test began (the specimen's steps came before it): the
+  /// summary's steps count from it, a resumed run's included.
+  std::int64_t test_start_step_ = 0;
   int direction_ = 1;  ///< axial_direction(options_.path)
   /// Per output row: |eps_a|, q/p, eps_v and p / p0 (the critical-state test).
   std::vector<double> history_strain_, history_eta_, history_volume_, history_mean_stress_;
