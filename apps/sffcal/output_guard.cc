@@ -80,8 +80,9 @@ void check_new_run_file(const std::string& path, const std::vector<std::string>&
 
 void check_inputs_outside(const std::string& folder, const std::vector<std::string>& inputs) {
   std::error_code error;
-  const fs::path out = fs::weakly_canonical(folder, error);
+  fs::path out = fs::weakly_canonical(folder, error);
   if (error) return;
+  if (!out.has_filename()) out = out.parent_path();  // "fe/" ends in an empty component
   for (const std::string& input : inputs) {
     const fs::path in = fs::weakly_canonical(input, error);
     if (error) continue;
