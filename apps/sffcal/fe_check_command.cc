@@ -47,9 +47,11 @@ std::vector<int> parse_element_list(const std::string& text) {
     }
     const bool whole = used_first == (dash == std::string::npos ? part.size() : dash) &&
                        (dash == std::string::npos || used_last == part.size() - dash - 1);
-    if (!whole || first < 1 || last < first || last - first > 10000000)
+    if (!whole || first < 1 || last < first)
       throw std::invalid_argument("--elements: '" + part + "' is not N or N-M (1 <= N <= M)");
-    for (int e = first; e <= last; ++e) elements.push_back(e);
+    if (static_cast<long long>(last) - first >= 10000000)
+      throw std::invalid_argument("--elements: '" + part + "' names more than ten million elements");
+    for (long long e = first; e <= last; ++e) elements.push_back(static_cast<int>(e));
   }
   return elements;
 }

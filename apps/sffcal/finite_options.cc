@@ -24,6 +24,8 @@ bool non_finite_number(const std::string& text) {
 
 void refuse_non_finite_options(const CLI::App& app) {
   for (const CLI::Option* option : app.get_options()) {
+    // Numbers only: a file or folder may be called "inf" (CLI11 names a double's type FLOAT).
+    if (option->get_type_name().find("FLOAT") == std::string::npos) continue;
     for (const std::string& result : option->results()) {
       std::istringstream parts(result);
       std::string part;

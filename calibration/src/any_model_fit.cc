@@ -169,6 +169,12 @@ AnyModelFitResult fit_any_model(const model::ModelDescription& description,
                                     c.name + "' has no value when absent; give it");
       constants.push_back(c.value_if_absent);
     }
+  for (const model::ParameterInfo& info : table)
+    if (!std::isfinite(info.fit_low) || !std::isfinite(info.fit_high) ||
+        !(info.fit_low < info.fit_high))
+      throw std::invalid_argument("model '" + description.name() + "': the search range of '" +
+                                  info.name + "' is not a finite interval: the fit of any model "
+                                  "needs one for every parameter");
   std::vector<double> x = options.start;
   if (x.empty())
     for (const model::ParameterInfo& info : table) x.push_back(middle(info));

@@ -66,7 +66,7 @@ double Simulation::unbalanced_force_ratio() const {
   const double net = deterministic_sum(P.num_bodies(), 0.0, [&](int begin, int end) {
     double s = 0.0;
     for (int b = begin; b < end; ++b)
-      s += (P.force[b] + options_.density_scaling * P.mass[b] * gravity).norm();
+      s += (P.force[b] + P.mass[b] * gravity).norm();  // the true weight, as integrate() applies
     return s;
   });
   int touching = 0;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""One CalculiX C3D8 element in drained triaxial compression (or extension) with sffcal's UMAT,
+"""One CalculiX C3D8 element in drained triaxial compression with sffcal's UMAT,
 against sffcal's material-point driver and deal.II element on the same path (docs/fe.md, "CalculiX").
 
 The deck is written from `sffcal umat-cards` (PROPS, *DEPVAR, the initial stress) and run by the
@@ -145,6 +145,9 @@ def main():
     parser.add_argument("-o", "--output", required=True, help="folder (created; must be new)")
     args = parser.parse_args()
     args.ccx, args.sffcal = os.path.abspath(args.ccx), os.path.abspath(args.sffcal)
+    if not args.max_strain > 0:
+        sys.exit("single_element: --max-strain must be positive (fe-check, the reference, drives "
+                 "drained compression only)")
     if os.path.exists(args.output):
         sys.exit(f"single_element: {args.output} exists; give a new folder")
     os.makedirs(args.output)
@@ -183,14 +186,18 @@ def main():
     check = os.path.join(out, "fe_check")
     fe_start = ["--dem", args.dem] if args.dem else ["--pressures", repr(args.pressure),
                                                       "--void-ratio", repr(args.void_ratio)]
-    subprocess.run([args.sffcal, "fe-check", "--parameters", args.parameters, *fe_start,
-                    "--max-strain", repr(args.max_strain), "--steps", str(args.steps),
-                    "--no-mesh", "-o", check],
-                   stdout=open(os.path.join(out, "fe_check.log"), "w"), stderr=subprocess.STDOUT)
-    # fe-check's case: the DEM run's stem, or p<kPa>kPa for a plain specimen.
-    name = (os.path.splitext(os.path.basename(args.dem))[0] if args.dem
+    with open(os.path.join(out, "fe_check.log"), "w") as log:
+        code = subprocess.run([args.sffcal, "fe-check", "--parameters", args.parameters, *fe_start,
+                               "--max-strain", repr(args.max_strain), "--steps", str(args.steps),
+                               "--no-mesh", "-o", check], stdout=log,
+                              stderr=subprocess.STDOUT).returncode
+    # fe-check's case: the DEM run's name (its file name to the first dot), or p<kPa>kPa.
+    name = (os.path.basename(args.dem).split(".")[0] if args.dem
             else f"p{args.pressure / 1e3:g}kPa")
     case = os.path.join(check, name)
+    if not os.path.exists(os.path.join(case, "driver.csv")):
+        sys.exit(f"single_element: fe-check (exit {code}) wrote no {case}/driver.csv; see "
+                 f"{out}/fe_check.log")
     driver = read_curve(os.path.join(case, "driver.csv"))[1:]
     element = read_curve(os.path.join(case, "element.csv"))[1:]
     if len(driver) != args.steps:

@@ -1,7 +1,11 @@
 // The input-deck cards of a model's UMAT (umat_cards.h).
 #include "fe_model/umat_cards.h"
 
+#include <Eigen/Core>
+
+#include <cmath>
 #include <cstdio>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -45,6 +49,17 @@ std::string umat_cards(const UmatCardOptions& options) {
             : 0.0;
     start = dem_start(values, a_cs, runfile::read_dem_test(options.dem_run), options.dem_run);
   }
+  // The start as the UMAT will take it: the model's own initial state refuses an input it cannot
+  // carry (a void ratio of 5, a coordination of 0), naming it, before the cards are printed.
+  if (!(start.confining_pressure > 0.0) || !std::isfinite(start.confining_pressure))
+    throw std::invalid_argument("the start's sigma_3 " + exact(start.confining_pressure) +
+                                " Pa is not a positive number");
+  {
+    const std::unique_ptr<model::Behaviour> behaviour = d.make(values.constants, values.parameters);
+    std::vector<double> state(static_cast<std::size_t>(model::slot_components(d.state())));
+    behaviour->initial_state(start.confining_pressure * Eigen::Matrix3d::Identity(),
+                             start.inputs.data(), state.data());
+  }
   const std::vector<double> props =
       model::umat_props(d, start.inputs, values.constants, values.parameters);
   const std::vector<std::string> names = model::umat_props_names(d);
@@ -71,9 +86,15 @@ std::string umat_cards(const UmatCardOptions& options) {
     const std::string s = exact(-start.confining_pressure);
     out << "** the specimen's initial stress, tension positive (the UMAT starts its state from it)\n"
         << "*INITIAL CONDITIONS, TYPE=STRESS\n";
-    for (int e : options.elements)
+    // CalculiX reads element, integration point, six components; Abaqus element, six components.
+    for (int e : options.elements) {
+      if (options.client == "abaqus") {
+        out << e << ", " << s << ", " << s << ", " << s << ", 0, 0, 0\n";
+        continue;
+      }
       for (int k = 1; k <= options.integration_points; ++k)
         out << e << ", " << k << ", " << s << ", " << s << ", " << s << ", 0, 0, 0\n";
+    }
   }
   return out.str();
 }

@@ -37,7 +37,17 @@ if [[ $acst == *"*MATERIAL, NAME=ACST"* ]] && [[ $acst == *"CONSTANTS=25"* ]] &&
    [[ $acst != *"INITIAL CONDITIONS"* ]]; then
   ok "ACST for Abaqus: NAME=ACST, 25 PROPS from e_0, no temperature, no initial stress card"
 else fail "ACST cards: $acst"; fi
-for bad in "0" "2-1" "1-x"; do
+abaqus=$("$sffcal" umat-cards --parameters "$root/examples/acst_toyoura.json" --client abaqus \
+  --pressure 2e5 --elements 3-4 2>&1)
+stresses=$(printf '%s\n' "$abaqus" | sed -n '/^\*INITIAL CONDITIONS/,$p' | sed '1d')
+if [ "$(printf '%s\n' "$stresses" | wc -l)" -eq 2 ] &&
+   [ "$(printf '%s\n' "$stresses" | head -1)" = "3, -200000, -200000, -200000, 0, 0, 0" ]; then
+  ok "Abaqus' initial stress: one line per element, no integration point"
+else fail "Abaqus initial stress: $stresses"; fi
+out=$("$sffcal" umat-cards --parameters "$root/examples/acst_toyoura.json" --void-ratio 5 2>&1)
+if [ $? -ne 0 ] && [[ $out == *"void ratio"* ]]; then ok "a start the model cannot carry is refused"
+else fail "--void-ratio 5: $out"; fi
+for bad in "0" "2-1" "1-x" "1-2147483647"; do
   out=$("$sffcal" umat-cards --parameters "$root/examples/acst_toyoura.json" --elements "$bad" 2>&1)
   if [ $? -ne 0 ] && [[ $out == *"--elements"* ]]; then ok "--elements $bad refused by name"
   else fail "--elements $bad: $out"; fi

@@ -19,14 +19,16 @@ struct UmatCardOptions {
   /// Elements whose integration points get the initial stress (-sigma_3 on the diagonal, tension
   /// positive); empty: no *INITIAL CONDITIONS card.
   std::vector<int> elements;
-  int integration_points = 8;  ///< per element (C3D8: 8, C3D20R: 8, C3D8R: 1)
+  int integration_points = 8;  ///< per element (C3D8: 8, C3D20R: 8, C3D8R: 1); CalculiX only
+                               ///< (Abaqus' card has one line per element)
   /// "calculix": the material named ABAQUS<UMAT name> (CalculiX calls its UMAT for names that
   /// begin with ABAQUS and passes the rest); "abaqus": named <UMAT name>.
   std::string client = "calculix";
 };
 
 /// The cards, with comments naming every PROPS entry. Throws std::invalid_argument naming a bad
-/// option, std::runtime_error for an unreadable file.
+/// option or a start the model cannot carry (its initial_state refuses it), std::runtime_error for
+/// an unreadable file.
 std::string umat_cards(const UmatCardOptions& options);
 
 }  // namespace fe_model
