@@ -129,6 +129,14 @@ int run_triaxial(const dem::RunConfig& config, const std::string& specimen_path,
       throw std::runtime_error(specimen_path + " is a " + specimen.metadata().kind +
                                " run file, not a specimen (`sffcal prepare` writes one; `sffcal "
                                "triaxial --resume` continues a test)");
+    // The bodies' masses are the specimen's: a config of another grain density would be recorded
+    // in /physics and not applied (the results were those of the specimen's density).
+    const double density = specimen.metadata().physics.grain_density;
+    if (density > 0.0 && std::abs(config.grains.density - density) > 1e-12 * density)
+      throw std::runtime_error("the config's grains.density " + std::to_string(config.grains.density) +
+                               " kg/m^3 differs from the specimen's " + std::to_string(density) +
+                               " kg/m^3 (" + specimen_path + "), whose bodies carry their masses: "
+                               "give the specimen's density");
     return dem::read_checkpoint(specimen, &specimen_extras);
   }();
   const double sigma3 = config.triaxial.confining_stress;

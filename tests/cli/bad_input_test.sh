@@ -230,5 +230,9 @@ expect_failure "fe-check whose parameter file lies in its output folder (summary
   "lies in the output folder" "$sffcal" fe-check --parameters fe/summary.csv -o fe --no-mesh
 cmp -s "$examples/acst_toyoura.json" fe/summary.csv && echo "ok   it is left as it was" || { echo "FAIL it changed"; failures=$((failures + 1)); }
 
+sed -e 's/^density = .*/density = 265000.0/' small.toml > heavy.toml
+expect_failure "a config whose grain density differs from the specimen's (recorded, not applied)" \
+  "differs from the specimen's" "$sffcal" triaxial -c heavy.toml -s specimen.h5 -o heavy.h5
+
 echo "$cases bad inputs, $failures check(s) failed"
 exit $((failures > 0))
