@@ -216,6 +216,39 @@ void write_summary(const fs::path& out_folder, const std::vector<FeCheckRow>& ch
   if (!summary) throw std::runtime_error("cannot write " + (out_folder / "summary.csv").string());
 }
 
+// The loading of every run: drained compression to --max-strain in --steps equal increments.
+TriaxialLoading triaxial_loading(const FeCheckOptions& options) {
+  TriaxialLoading loading;
+  loading.axial_strain_end = options.max_strain;
+  loading.n_steps = options.steps;
+  return loading;
+}
+
+// Each --dem run read once: its curves into check.dem_runs (the DEM fabric normalised by ACST's
+// a_cs, or taken as a_c itself, A:n_c / sqrt(2/3), where a_cs is 0) and its start for the model.
+std::vector<ModelStart> read_dem_runs(const FeCheckOptions& options,
+                                      const model::ParameterValues& values, double a_cs,
+                                      Check& check) {
+  std::vector<ModelStart> starts;
+  for (const std::string& path : options.dem_runs) {
+    const runfile::DemTest run = runfile::read_dem_test(path);
+    check.dem_runs.push_back(dem_run(run, path, a_cs > 0.0 ? a_cs : model::acst::kSqrtTwoThirds));
+    starts.push_back(dem_start(values, a_cs, run, path));
+  }
+  return starts;
+}
+
+// The plain pressure cases, then one case per DEM run (check.dem_runs, starts), through add_case.
+template <typename AddCase>
+void add_plain_and_dem_cases(const FeCheckOptions& options, const model::ParameterValues& values,
+                             const std::vector<ModelStart>& starts, const Check& check,
+                             AddCase add_case) {
+  for (double p : options.pressures)
+    add_case(pressure_name(p), plain_start(values, p, options.void_ratio), nullptr);
+  for (std::size_t r = 0; r < starts.size(); ++r)
+    add_case(check.dem_runs[r].name, starts[r], &check.dem_runs[r]);
+}
+
 // ACST (docs/fe.md): the plain pressure cases with an isotropic fabric and the DEM runs' cases
 // with the fabric of their first SFF row, F_0 = A_DEM / a_cs; ACST's own driver, whose integration
 // options are the element's, so that both agree to round-off.
@@ -224,9 +257,7 @@ Check acst_check(const FeCheckOptions& options, const model::ParameterValues& va
   const model::acst::Parameters<double> parameters = model::acst::parameters_of(values);
   const auto [a_cs, a_cs_source] =
       acst_fabric_normalisation(values, options.parameters_path, options.a_cs);
-  TriaxialLoading loading;
-  loading.axial_strain_end = options.max_strain;
-  loading.n_steps = options.steps;
+  TriaxialLoading loading = triaxial_loading(options);
   loading.integration.tolerance = options.integration_tolerance;
 
   Check check;
@@ -237,12 +268,7 @@ Check acst_check(const FeCheckOptions& options, const model::ParameterValues& va
              "tolerance %.1e; output in %s/",
              options.max_strain, options.steps, loading.integration.tolerance,
              options.output_folder.c_str())};
-  std::vector<ModelStart> starts;
-  for (const std::string& path : options.dem_runs) {
-    const runfile::DemTest run = runfile::read_dem_test(path);
-    check.dem_runs.push_back(dem_run(run, path, a_cs));
-    starts.push_back(dem_start(values, a_cs, run, path));
-  }
+  const std::vector<ModelStart> starts = read_dem_runs(options, values, a_cs, check);
 
   auto add_case = [&](const std::string& name, const ModelStart& start, const DemRun* dem) {
     AcstSpecimen specimen;
@@ -264,10 +290,7 @@ Check acst_check(const FeCheckOptions& options, const model::ParameterValues& va
     c.dem = dem;
     check.cases.push_back(c);
   };
-  for (double p : options.pressures)
-    add_case(pressure_name(p), plain_start(values, p, options.void_ratio), nullptr);
-  for (std::size_t r = 0; r < starts.size(); ++r)
-    add_case(check.dem_runs[r].name, starts[r], &check.dem_runs[r]);
+  add_plain_and_dem_cases(options, values, starts, check, add_case);
   return check;
 }
 
@@ -292,16 +315,9 @@ Check network_check(const FeCheckOptions& options, const model::ParameterValues&
       format("drained triaxial compression to axial strain %.3g in %u steps; output in %s/ "
              "(the plain pressure cases need an initial network: not run)",
              options.max_strain, options.steps, options.output_folder.c_str())};
-  TriaxialLoading loading;
-  loading.axial_strain_end = options.max_strain;
-  loading.n_steps = options.steps;
-  std::vector<ModelStart> starts;
-  for (const std::string& path : options.dem_runs) {
-    // The network's fabric invariant is a_c itself: A:n_c / a_cs with a_cs = sqrt(2/3).
-    const runfile::DemTest run = runfile::read_dem_test(path);  // read once for both uses
-    check.dem_runs.push_back(dem_run(run, path, model::acst::kSqrtTwoThirds));
-    starts.push_back(dem_start(values, 0.0, run, path));
-  }
+  const TriaxialLoading loading = triaxial_loading(options);
+  // The network's fabric invariant is a_c itself (a_cs 0: A:n_c / sqrt(2/3)).
+  const std::vector<ModelStart> starts = read_dem_runs(options, values, 0.0, check);
   for (std::size_t r = 0; r < starts.size(); ++r) {
     const DemRun& dem = check.dem_runs[r];
     // The inputs: void_ratio, coordination, fabric, normal, tangential (the model's layout).
@@ -414,15 +430,8 @@ Check any_model_check(const FeCheckOptions& options, const model::ParameterValue
              options.parameters_path.c_str()),
       format("drained triaxial compression to axial strain %.3g in %u steps; output in %s/",
              options.max_strain, options.steps, options.output_folder.c_str())};
-  TriaxialLoading loading;
-  loading.axial_strain_end = options.max_strain;
-  loading.n_steps = options.steps;
-  std::vector<ModelStart> starts;
-  for (const std::string& path : options.dem_runs) {
-    const runfile::DemTest run = runfile::read_dem_test(path);
-    check.dem_runs.push_back(dem_run(run, path, model::acst::kSqrtTwoThirds));
-    starts.push_back(dem_start(values, 0.0, run, path));
-  }
+  const TriaxialLoading loading = triaxial_loading(options);
+  const std::vector<ModelStart> starts = read_dem_runs(options, values, 0.0, check);
   auto add_case = [&](const std::string& name, const ModelStart& start, const DemRun* dem) {
     const double pressure = start.confining_pressure;
     const std::vector<double> inputs = start.inputs;
@@ -440,10 +449,7 @@ Check any_model_check(const FeCheckOptions& options, const model::ParameterValue
     c.dem = dem;
     check.cases.push_back(c);
   };
-  for (double p : options.pressures)
-    add_case(pressure_name(p), plain_start(values, p, options.void_ratio), nullptr);
-  for (std::size_t r = 0; r < starts.size(); ++r)
-    add_case(check.dem_runs[r].name, starts[r], &check.dem_runs[r]);
+  add_plain_and_dem_cases(options, values, starts, check, add_case);
   return check;
 }
 
