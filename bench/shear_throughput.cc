@@ -28,26 +28,16 @@ int main(int argc, char** argv) {
   std::vector<int> thread_counts = {1, 2};
   double strain = 0.005, rate = 100.0;
   std::string out_folder = "out/bench/shear";
-  for (int k = 1; k < argc; ++k) {
-    const std::string arg = argv[k];
-    if (arg.rfind("--", 0) != 0) {
-      specimens.push_back(arg);
-      continue;
-    }
-    if (k + 1 >= argc) {
-      std::fprintf(stderr, "%s needs a value\n", arg.c_str());
-      return 1;
-    }
-    const std::string value = argv[++k];
-    if (arg == "--threads") thread_counts = bench::parse_int_list(value);
-    else if (arg == "--strain") strain = std::atof(value.c_str());
-    else if (arg == "--rate") rate = std::atof(value.c_str());
-    else if (arg == "--out") out_folder = value;
-    else {
-      std::fprintf(stderr, "unknown option %s\n", arg.c_str());
-      return 1;
-    }
-  }
+  const bool parsed = bench::parse_arguments(
+      argc, argv, specimens, [&](const std::string& arg, const std::string& value) {
+        if (arg == "--threads") thread_counts = bench::parse_int_list(value);
+        else if (arg == "--strain") strain = std::atof(value.c_str());
+        else if (arg == "--rate") rate = std::atof(value.c_str());
+        else if (arg == "--out") out_folder = value;
+        else return false;
+        return true;
+      });
+  if (!parsed) return 1;
   if (specimens.empty()) {
     std::fprintf(stderr, "usage: shear_throughput SPECIMEN.h5 [...] [--threads 1,2] [--strain 0.005] "
                          "[--rate 100] [--out out/bench/shear]\n");

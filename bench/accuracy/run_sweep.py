@@ -6,8 +6,8 @@ a converged reference.
 usage: run_sweep.py OUT [--jobs J] [--sffcal PATH] [--only SUBSTRING[,SUBSTRING...]] [--list]
 
 Specimens: SEEDS dense specimens (compaction friction 0.15, p'0 = 100 kPa) of BODIES two-sphere
-clumps, prepared once per seed (and once per seed for the clump-number cases). Each case shears
-every seed's specimen to 30 % axial strain with `sffcal triaxial` on one thread and analyses it
+clumps (300, or the environment's SWEEP_BODIES, read by summarise.py too), prepared once per seed
+(and once per seed for the clump-number cases). Each case shears every seed's specimen to 30 % axial strain with `sffcal triaxial` on one thread and analyses it
 with `sffcal sff` (no bootstrap). A case is one dictionary of config keys over BASE; REFERENCE is
 the converged setting (fine step, slow loading). Runs are claimed with an exclusive lock file,
 so several copies of this script (on one machine or sharing a folder) split the work, and a
@@ -24,7 +24,7 @@ from multiprocessing import Pool
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 SEEDS = (1, 2, 3)
-BODIES = 300
+BODIES = int(os.environ.get("SWEEP_BODIES", "300"))  # the specimens' size (summarise.py reads it too)
 MAX_STRAIN = 0.30
 
 # The base case: the settings examples/quick_triaxial.toml had in issue 8 (then the engine defaults; rate
@@ -40,7 +40,9 @@ BASE = {
     "triaxial.snapshot_strain_interval": 0.01,
     "bodies": BODIES,
 }
-REFERENCE = {"engine.time_step_safety": 0.1, "triaxial.strain_rate": 20.0,
+# The converged setting. Since issue 50 the critical step is leapfrog's limit 2/omega_max, about 1.9
+# times the per-body estimate of issues 8 and 16, whose reference was 0.1 of it: 0.05 is that step.
+REFERENCE = {"engine.time_step_safety": 0.05, "triaxial.strain_rate": 20.0,
              "triaxial.output_strain_interval": 0.001, "triaxial.snapshot_strain_interval": 0.005}
 
 # name -> keys changed from BASE. One knob at a time, then the candidate presets.
@@ -78,6 +80,10 @@ CASES = {
     "combo_rate100_safety1.0": {"triaxial.strain_rate": 100.0, "engine.time_step_safety": 1.0},
     "combo_rate200_safety1.0": {"triaxial.strain_rate": 200.0, "engine.time_step_safety": 1.0},
 }
+# Issue 50: safety of the stability limit 2/omega_max, at the paper's rate and the default's.
+CASES.update({f"i50_rate{rate}_safety{safety}": {"triaxial.strain_rate": float(rate),
+                                                 "engine.time_step_safety": safety}
+              for rate in (20, 100) for safety in (0.5, 0.7, 0.85, 1.0)})
 
 
 def case_keys(name):

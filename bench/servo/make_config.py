@@ -1,11 +1,13 @@
 #!/usr/bin/python3
 """Writes one config of the servo and time-step sweep (issue 16) from the default configuration.
 
-usage: make_config.py OUT.toml BODIES DENSITY RATE [SAFETY] [--sffcal PATH]
+usage: make_config.py OUT.toml BODIES DENSITY RATE [SAFETY] [--sffcal PATH] [--max-strain E]
+                      [--set KEY=VALUE ...]
 
 DENSITY is "dense" (compaction friction 0.15) or "loose" (0.5); RATE the axial strain rate [1/s];
 SAFETY the time-step safety factor (default: the engine's). p'0 = sigma_3 = 100 kPa, one thread,
-sheared to 5 % axial strain with a series row every 0.05 %, no snapshots but the first and last.
+sheared to 5 % axial strain with a series row every 0.05 %, no snapshots but the first and last;
+--set changes any other key of the default config.
 """
 import argparse
 import functools
@@ -53,9 +55,16 @@ def main():
     ap.add_argument("safety", type=float, nargs="?")
     ap.add_argument("--sffcal", default="build/sffcal")
     ap.add_argument("--max-strain", type=float, default=0.05)
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     a = ap.parse_args()
+    extra = {}
+    for item in a.set:
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise SystemExit(f"--set wants KEY=VALUE, got {item!r}")
+        extra[key.strip()] = value.strip()
     with open(a.out, "w") as f:
-        f.write(config_text(a.sffcal, a.bodies, a.density, a.rate, a.safety, a.max_strain))
+        f.write(config_text(a.sffcal, a.bodies, a.density, a.rate, a.safety, a.max_strain, extra))
 
 
 if __name__ == "__main__":

@@ -68,4 +68,17 @@ std::vector<Wall> box_walls(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi
   return walls;
 }
 
+void set_random_velocities(Particles& p, double kinetic_energy, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  double kinetic = 0.0;
+  for (int b = 0; b < p.num_bodies(); ++b) {
+    p.velocity[b] = {gauss(rng), gauss(rng), gauss(rng)};
+    p.angular_momentum[b].setZero();
+    p.angular_velocity[b].setZero();
+    kinetic += 0.5 * p.mass[b] * p.velocity[b].squaredNorm();
+  }
+  for (auto& v : p.velocity) v *= std::sqrt(kinetic_energy / kinetic);
+}
+
 }  // namespace dem

@@ -161,18 +161,22 @@ void Simulation::initialise() {
     r_max = std::max(r_max, r);
   }
   skin_ = options_.skin_ratio * 2.0 * r_max;
-  one_contact_dt_ =
-      one_contact_critical_step(particles_, contact_, options_.density_scaling);
+  one_contact_dt_ = one_contact_time_step(particles_, contact_, options_.density_scaling);
   wall_force_.assign(walls_.size(), 0.0);
   wall_stiffness_.assign(walls_.size(), 0.0);
   servo_.assign(walls_.size(), ServoState{});
 }
 
 void Simulation::set_time_step(const ContactList& list, bool running) {
-  critical_dt_ = std::min(one_contact_dt_,
-                          stiffness_critical_step(particles_, walls_, list, contact_,
-                                                  options_.density_scaling,
-                                                  options_.min_parallel_items));
+  stability_ = stability_limit(particles_, walls_, list, contact_, options_.density_scaling,
+                               options_.min_parallel_items);
+  // Without candidates no contact can form before the next build; a body's first contact then
+  // bounds the step of the build after.
+  const bool any_candidate = std::isfinite(stability_.time_step());
+  critical_dt_ = (any_candidate ? stability_.time_step() : one_contact_dt_) *
+                 damped_limit_factor(options_.local_damping,
+                                     any_candidate ? stability_.modal_damping_ratio
+                                                   : contact_.normal_damping_ratio);
   const double previous_dt = dt_;
   dt_ = options_.time_step > 0.0 ? options_.time_step : options_.time_step_safety * critical_dt_;
   if (!(dt_ > 0.0 && std::isfinite(dt_))) {
@@ -189,12 +193,10 @@ void Simulation::set_time_step(const ContactList& list, bool running) {
       servo.integral *= scale;
     }
   }
-  // The estimate is not a bound (critical_step.h): an explicit step beyond it is refused rather
-  // than trusted to the margin the energy tests measured.
   if (dt_ > critical_dt_) {
     std::ostringstream msg;
     msg << "Simulation: time_step " << dt_ << " s exceeds the critical step " << critical_dt_
-        << " s of the stiffness the bodies carry through their contacts"
+        << " s, leapfrog's limit 2/omega_max of the bodies on their contact springs"
         << (running ? " (at step " + std::to_string(step_count_) + ", after the contacts changed)"
                     : "")
         << ", past which the run is unstable; use time_step_safety (default "

@@ -186,8 +186,8 @@ TEST(Determinism, SameSeedSameRunOtherSeedOtherRun) {
 TEST(TimeStep, AboveTheCriticalStepIsRefused) {
   Particles p = random_lattice_packing(8, GrainSpec{}, 1);
   Simulation probe(p, {}, ContactParameters{}, SimulationOptions{});
-  // 1.8 dt_c is stable for one contact but not for a jammed packing's many (it used to run and
-  // stop later as "unstable"); 2.5 dt_c is unstable even for one contact.
+  // dt_c is leapfrog's limit 2/omega_max of the packing's springs: any step past it, by 1 % or
+  // more, is refused before the run.
   for (double factor : {1.01, 1.8, 2.5}) {
     SimulationOptions options;
     options.time_step = factor * probe.critical_time_step();

@@ -58,6 +58,8 @@ TEST(DemRun, SffFollowsADenseTestAndForceAnisotropyPeaksWithTheStress) {
     return best;
   };
   const std::size_t peak = argmax([](const SnapshotAnalysis& a) { return a.eta; });
+  double decoupled_ratio_sum = 0.0;
+  int sheared = 0;
   for (std::size_t k = 0; k < all.size(); ++k) {
     const SnapshotAnalysis& a = all[k];
     // T3: with the wall contacts' terms, the average stress is the wall stress; only inertia
@@ -68,16 +70,25 @@ TEST(DemRun, SffFollowsADenseTestAndForceAnisotropyPeaksWithTheStress) {
     if (a.eta > 0.3) {
       EXPECT_NEAR(a.eta_sff, a.eta, 0.12 * a.eta) << "snapshot " << k;
       // T11: the clump branch remainder is small; the anisotropies carrying the shear are
-      // positive; the decoupled form (2/5)(a_c + a_n) + (3/5) mu m is within 15 %.
+      // positive; the decoupled form (2/5)(a_c + a_n) + (3/5) mu m, which assumes the
+      // mobilisation independent of the normal force, understates eta: within 15 % on average
+      // over the test and 20 % at each snapshot. Measured on six specimens of this recipe
+      // (seeds 21-26), the lowest ratio over a test was 0.864-0.934 with the step of earlier
+      // versions and 0.835-0.928 with the step at 0.7 of the stability limit (seed 21: 0.826-0.864
+      // at 0.37-1.0 of it, so its specimen and not the step), the mean 0.88 here.
       EXPECT_LT(a.branch_ratio, 0.1) << "snapshot " << k;
       EXPECT_GT(a.a_c, 0.0) << "snapshot " << k;
       EXPECT_GT(a.a_n, 0.0) << "snapshot " << k;
       EXPECT_GT(a.m, 0.0) << "snapshot " << k;
       EXPECT_GT(a.sliding_fraction, 0.0) << "snapshot " << k;
-      EXPECT_NEAR(a.eta_decoupled, a.eta, 0.15 * a.eta) << "snapshot " << k;
+      EXPECT_NEAR(a.eta_decoupled, a.eta, 0.20 * a.eta) << "snapshot " << k;
+      decoupled_ratio_sum += a.eta_decoupled / a.eta;
+      ++sheared;
     }
     EXPECT_GE(a.mechanical_coordination, a.coordination);  // removing rattlers raises Z
   }
+  ASSERT_GT(sheared, 0);
+  EXPECT_NEAR(decoupled_ratio_sum / sheared, 1.0, 0.15);
   // The analysis of the stored records equals the engine's own Love-Weber stress.
   EXPECT_LT((all.back().stress - sim.contact_stress(false)).norm(), 1e-9 * all.back().stress.norm());
   // A dense specimen: a stress peak well above the final ratio; the normal-force anisotropy and

@@ -27,6 +27,10 @@ struct GrainSpec {
 Particles random_lattice_packing(int num_bodies, const GrainSpec& grains, std::uint64_t seed,
                                  double gap_ratio = 0.05, double height_ratio = 1.0);
 
+/// Sets the bodies moving for a stability or energy test: seeded Gaussian velocity components,
+/// no spin, scaled so that they carry `kinetic_energy` [J] (with their unscaled masses).
+void set_random_velocities(Particles& particles, double kinetic_energy, std::uint64_t seed);
+
 /// Smallest axis-aligned box holding every sphere, [lo, hi] per axis.
 void bounding_box(const Particles& particles, Eigen::Vector3d& lo, Eigen::Vector3d& hi);
 

@@ -18,6 +18,7 @@
 
 #include "dem/contact_law.h"
 #include "dem/contact_list.h"
+#include "dem/critical_step.h"
 #include "dem/particles.h"
 #include "dem/records.h"
 #include "dem/scene_features.h"
@@ -93,10 +94,13 @@ class Simulation {
   double time() const { return time_; }
   std::int64_t step_count() const { return step_count_; }
   double time_step() const { return dt_; }
-  /// The critical step of the current candidate contacts: the stiffness each body carries
-  /// through them (critical_step.h), refreshed at every list build, and at most the one-contact
-  /// bound. The time step follows it (time_step_safety x it) unless time_step is explicit.
+  /// The critical step of the current candidate contacts: leapfrog's limit 2/omega_max of the
+  /// bodies on their contact springs (critical_step.h), refreshed at every list build (the
+  /// one-contact limit where no body has a candidate), lowered for damping (damped_limit_factor).
+  /// The time step follows it (time_step_safety x it) unless time_step is explicit.
   double critical_time_step() const { return critical_dt_; }
+  /// The estimate behind critical_time_step() and its brackets, at the last list build.
+  const StabilityLimit& stability() const { return stability_; }
   const SceneFeatures& features() const { return features_; }
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }
@@ -155,7 +159,7 @@ class Simulation {
   /// Throws std::invalid_argument naming the bodies (or body and wall) of an initial overlap
   /// beyond max_overlap_ratio.
   void refuse_deep_initial_overlaps(const ContactList& candidates) const;
-  /// The critical step of `list` (stiffness_critical_step, capped by the one-contact bound) and
+  /// The critical step of `list` (stability_limit; the one-contact limit without candidates) and
   /// the time step from it; refuses an explicit time step above it (invalid_argument before the
   /// run, runtime_error while `running`).
   void set_time_step(const ContactList& list, bool running);
@@ -172,6 +176,7 @@ class Simulation {
   SceneFeatures features_;
   ContactList contacts_;
   double dt_ = 0.0, critical_dt_ = 0.0, one_contact_dt_ = 0.0, skin_ = 0.0;
+  StabilityLimit stability_;
   double last_step_dt_ = 0.0;  ///< length of the last completed step [s]
   double time_ = 0.0;
   double max_sphere_move_ = 0.0;  ///< since the last list build [m]
