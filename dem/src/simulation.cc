@@ -419,6 +419,10 @@ void Simulation::compute_wall_forces() {
     const Eigen::Vector3d n = wall.inward_normal();
     const double stiffness = wall_normal_stiffness(young, r);
     double fn = stiffness * overlap;
+    // What the servo reads as the wall's stiffness: the force a move of the wall adds over one
+    // step, through the spring and, moving at move / dt, through the dashpot (without the
+    // dashpot's share a servo at gain 0.8 overshot and never settled for ratios >= 0.35).
+    double step_stiffness = stiffness;
     Eigen::Vector3d ft = Eigen::Vector3d::Zero();
     bool sliding = false;
     if constexpr (kWallFriction || kViscous) {
@@ -428,9 +432,10 @@ void Simulation::compute_wall_forces() {
       v_rel[wall.axis] -= wall.velocity;
       const double vn = v_rel.dot(n);
       if constexpr (kViscous) {
-        fn = std::max(0.0, fn - 2.0 * contact_.normal_damping_ratio *
-                                    std::sqrt(options_.density_scaling * P.mass[b] * stiffness) *
-                                    vn);
+        const double dashpot = 2.0 * contact_.normal_damping_ratio *
+                               std::sqrt(options_.density_scaling * P.mass[b] * stiffness);
+        fn = std::max(0.0, fn - dashpot * vn);
+        step_stiffness += dashpot / dt_;
       }
       if constexpr (kWallFriction) {
         if (C.wall_touching[k]) {
@@ -448,7 +453,7 @@ void Simulation::compute_wall_forces() {
     slots_[slot].overlap = overlap;
     slots_[slot].sliding = sliding;
     wall_force_[w] += fn;
-    wall_stiffness_[w] += stiffness;
+    wall_stiffness_[w] += step_stiffness;
     if (overlap > worst_ratio * r) worst_ratio = overlap / r, worst = k;
   }
   // Wall contacts get the same limit and diagnostic as sphere pairs (the smaller radius is the

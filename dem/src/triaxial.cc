@@ -384,9 +384,13 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
   // on the others the lateral servo targets stay put and the steps run in batches.
   const bool step_by_step =
       holds_volume(options_.path) || lateral_targets_follow_axial_stress(options_.path);
-  // The first row needs the wall forces of a step taken with the platens moving.
+  // The first row needs the wall forces of a step taken with the platens moving. A specimen
+  // restored from its file holds no forces before its first step: its targets are then those
+  // of the path's start, q = 0 (with sigma_z 0, b = 1 would ask for sigma_y = 0).
   if (!resumed) {
-    if (step_by_step) update_lateral_walls(sim_.wall_stress(2));
+    const double axial_stress = sim_.wall_stress(2);
+    if (step_by_step)
+      update_lateral_walls(axial_stress > 0.0 ? axial_stress : options_.confining_stress);
     sim_.step();
   }
   const double platen_speed = 0.5 * options_.strain_rate * height0_;

@@ -136,6 +136,28 @@ TEST(LoadingPath, EachPathHoldsWhatItPrescribes) {
   }
 }
 
+// b = 1 from a specimen that holds no forces yet (restored, as from its file): the first targets
+// are the path's start, sigma_x = sigma_y = p0, not sigma_y = sigma_z = 0 (it was refused at
+// step 0). At constant p with sigma_y = sigma_z, sigma_x = 3 p0 - 2 sigma_z reaches 0 at
+// sigma_z = 1.5 p0 (q/p = 0.75), past which the path is refused by name.
+TEST(LoadingPath, TrueTriaxialWithBOneStartsFromTheIsotropicState) {
+  const Simulation specimen = testing::compacted_specimen(60, 0.0, 4);
+  const PathRun run = run_path(specimen, LoadingPath::kTrueTriaxial, 1.0, 0.004);
+  const auto& strain = run.rows.at("axial_strain");
+  ASSERT_GE(strain.size(), 4u);
+  EXPECT_NEAR(strain.back(), 0.004, 1e-4);
+  const double p0 = 1e5;
+  // Measured: p within 1.1 % of p0, (sigma_y - sigma_x) / (sigma_z - sigma_x) 0.984-1.004 in
+  // the rows past the first, where the servo has followed the first steps.
+  for (std::size_t k = 1; k < strain.size(); ++k) {
+    EXPECT_NEAR(run.rows.at("p")[k], p0, 0.02 * p0) << "row " << k;
+    const double sx = run.rows.at("wall_stress_xx")[k], sy = run.rows.at("wall_stress_yy")[k],
+                 sz = run.rows.at("wall_stress_zz")[k];
+    EXPECT_NEAR((sy - sx) / (sz - sx), 1.0, 0.03) << "row " << k;
+  }
+  EXPECT_GT(run.rows.at("q").back(), 0.5 * p0);
+}
+
 // Undrained compression of a very loose specimen (compacted with friction 1): the grains that
 // would contract cannot, so the contact network unloads and p falls (static liquefaction).
 TEST(LoadingPath, AnUndrainedLooseSpecimenLosesItsMeanStress) {

@@ -309,6 +309,20 @@ TEST(ExtremeInputs, StiffGrainsCompactWithTinyOverlaps) {
   EXPECT_LT(worst / (0.5 * grains.min_diameter), 1e-3);
 }
 
+TEST(ExtremeInputs, DampedContactsCompactAtAnyDampingRatio) {
+  // Contact dashpots at 0.35-1 of critical: the servo reads the dashpot's force per step of wall
+  // travel as stiffness (without it these did not settle in 2 million steps, the walls
+  // alternately losing their contacts and pressing twice the target). compacted_box checks that
+  // the compaction converged with every wall at p'0.
+  for (double ratio : {0.35, 0.5, 1.0}) {
+    SCOPED_TRACE("damping ratio " + std::to_string(ratio));
+    ContactParameters law;
+    law.friction = 0.15;
+    law.normal_damping_ratio = ratio;
+    compacted_box(100, GrainSpec{}, 1, law, SimulationOptions{});
+  }
+}
+
 TEST(ExtremeInputs, WideSizeRatioCompactsAndDetectsEveryOverlap) {
   GrainSpec grains;
   grains.min_diameter = 0.01e-3;  // size ratio 10

@@ -113,7 +113,9 @@ class Simulation {
 
   /// Compressive normal force the bodies exert on each wall at the last step [N].
   const std::vector<double>& wall_forces() const { return wall_force_; }
-  /// Sum of the normal stiffnesses of each wall's contacts at the last step [N/m].
+  /// Each wall's stiffness as its servo reads it at the last step [N/m]: the sum over its
+  /// contacts of the normal spring's and, with dashpots, the dashpot's force per unit of a wall
+  /// move made over one step (coefficient / time step).
   const std::vector<double>& wall_stiffnesses() const { return wall_stiffness_; }
 
   /// True when the walls form a box (one lower and one upper wall on each axis).
