@@ -111,8 +111,9 @@ int print_default_config(const std::string& out_path) {
   return 0;
 }
 
-int prepare_command(const std::string& config_path, const std::string& out_path) {
-  prepare_and_save(dem::load_run_config(config_path), out_path);
+int prepare_command(const std::string& config_path, const RunFileTarget& out) {
+  const dem::RunConfig config = dem::load_run_config(config_path);
+  out.make([&](const std::string& path) { prepare_and_save(config, path); });
   return 0;
 }
 
@@ -162,8 +163,10 @@ int run_triaxial(const dem::RunConfig& config, const std::string& specimen_path,
 }  // namespace
 
 int triaxial_command(const std::string& config_path, const std::string& specimen_path,
-                     const std::string& out_path) {
-  return run_triaxial(dem::load_run_config(config_path), specimen_path, out_path);
+                     const RunFileTarget& out) {
+  const dem::RunConfig config = dem::load_run_config(config_path);
+  out.make([&](const std::string& path) { run_triaxial(config, specimen_path, path); });
+  return 0;
 }
 
 int resume_command(const std::string& run_path) {
@@ -184,11 +187,12 @@ int resume_command(const std::string& run_path) {
   return 0;
 }
 
-int dem_command(const std::string& config_path, const std::string& out_path) {
-  const std::string specimen_path = out_path + ".specimen.h5";
+int dem_command(const std::string& config_path, const RunFileTarget& specimen,
+                const RunFileTarget& out) {
   const dem::RunConfig config = dem::load_run_config(config_path);  // read once for both stages
-  prepare_and_save(config, specimen_path);
-  return run_triaxial(config, specimen_path, out_path);
+  specimen.make([&](const std::string& path) { prepare_and_save(config, path); });
+  out.make([&](const std::string& path) { run_triaxial(config, specimen.path(), path); });
+  return 0;
 }
 
 int vtk_command(const std::string& run_path, const std::string& folder) {

@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
 
   std::string config_path, out_path, specimen_path, run_path;
   bool force = false;  // overwrite an existing output file
-  const char* force_help = "overwrite the output file if it exists";
+  const char* force_help = "overwrite the output file if it exists (a run file is replaced only "
+                           "once the new one is complete)";
   CLI::App* config = app.add_subcommand("config", "Print (or write) the default configuration");
   config->add_option("-o,--output", out_path, "file to write instead of printing");
   config->add_flag("--force", force, force_help);
@@ -57,7 +58,8 @@ int main(int argc, char** argv) {
   dem->add_option("-c,--config", config_path, "TOML configuration")->required()->check(CLI::ExistingFile);
   dem->add_option("-o,--output", out_path, "run file to write (HDF5); the specimen goes to "
                                            "<output>.specimen.h5")->required();
-  dem->add_flag("--force", force, "overwrite the run and specimen files if they exist");
+  dem->add_flag("--force", force, "overwrite the run and specimen files if they exist (each "
+                                  "replaced only once the new one is complete)");
 
   CLI::App* vtk = app.add_subcommand("vtk", "Export the snapshots of a run file for ParaView");
   vtk->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
@@ -193,19 +195,21 @@ int main(int argc, char** argv) {
     }
     if (prepare->parsed()) {
       sffcal::check_new_run_file(out_path, {config_path}, force, false);
-      return sffcal::prepare_command(config_path, out_path);
+      return sffcal::prepare_command(config_path, sffcal::RunFileTarget(out_path, false));
     }
     if (triaxial->parsed()) {
       if (resume) return sffcal::resume_command(out_path);
       if (config_path.empty() || specimen_path.empty())
         throw std::invalid_argument("triaxial needs --config and --specimen (or --resume)");
       sffcal::check_new_run_file(out_path, {config_path, specimen_path}, force, true);
-      return sffcal::triaxial_command(config_path, specimen_path, out_path);
+      return sffcal::triaxial_command(config_path, specimen_path,
+                                      sffcal::RunFileTarget(out_path, true));
     }
     if (dem->parsed()) {
       sffcal::check_new_run_file(out_path, {config_path}, force, true);
       sffcal::check_new_run_file(out_path + ".specimen.h5", {config_path}, force, false);
-      return sffcal::dem_command(config_path, out_path);
+      return sffcal::dem_command(config_path, sffcal::RunFileTarget(out_path + ".specimen.h5", false),
+                                 sffcal::RunFileTarget(out_path, true));
     }
     if (vtk->parsed()) {
       sffcal::check_output_folder(out_path);

@@ -4,9 +4,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 namespace sffcal {
 namespace {
@@ -32,6 +34,8 @@ fs::path parent_of(const fs::path& path) {
   const fs::path parent = path.parent_path();
   return parent.empty() ? fs::path(".") : parent;
 }
+
+constexpr const char* kReplacing = ".replacing";
 
 }  // namespace
 
@@ -64,8 +68,12 @@ void check_new_output_file(const std::string& path, const std::vector<std::strin
 
 void check_new_run_file(const std::string& path, const std::vector<std::string>& inputs,
                         bool force, bool with_series) {
-  std::vector<std::string> outputs = {path, path + ".partial"};
-  if (with_series) outputs.push_back(path + ".series.csv");
+  std::vector<std::string> outputs;
+  for (const std::string& run : {path, path + kReplacing}) {
+    outputs.push_back(run);
+    outputs.push_back(run + ".partial");
+    if (with_series) outputs.push_back(run + ".series.csv");
+  }
   for (const std::string& output : outputs) {
     check_new_output_file(output, inputs, force);
     // A run file is made beside its name and renamed over it: only a regular file is ever
@@ -76,6 +84,34 @@ void check_new_run_file(const std::string& path, const std::vector<std::string>&
                                "' is not a regular file (a device, FIFO or socket): it is never "
                                "replaced; choose another output");
   }
+}
+
+RunFileTarget::RunFileTarget(std::string path, bool with_series)
+    : path_(std::move(path)), with_series_(with_series) {
+  std::error_code error;
+  working_ = fs::exists(path_, error) ? path_ + kReplacing : path_;
+}
+
+void RunFileTarget::make(const std::function<void(const std::string&)>& write) const {
+  try {
+    write(working_);
+  } catch (const std::exception& e) {
+    if (!replaces()) throw;
+    throw std::runtime_error(std::string(e.what()) + "\n  (the existing '" + path_ +
+                             "' is kept as it was; this run's file is '" + working_ + "')");
+  }
+  if (!replaces()) return;
+  std::vector<std::pair<std::string, std::string>> moves = {{working_, path_}};
+  if (with_series_) moves.emplace_back(working_ + ".series.csv", path_ + ".series.csv");
+  for (const auto& [from, to] : moves) {
+    std::error_code error;
+    fs::rename(from, to, error);
+    if (error)
+      throw std::runtime_error("the new run is complete in '" + from + "' but could not replace '" +
+                               to + "': " + error.message());
+  }
+  std::printf("moved %s over the earlier %s%s\n", working_.c_str(), path_.c_str(),
+              with_series_ ? " (and its series CSV)" : "");
 }
 
 void check_inputs_outside(const std::string& folder, const std::vector<std::string>& inputs) {

@@ -3,6 +3,7 @@
 // inputs, and the folder it goes to exists and is writable; a write that failed is reported.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -15,10 +16,32 @@ void check_new_output_file(const std::string& path, const std::vector<std::strin
                            bool force);
 
 /// The same for a run file and the files written beside it: PATH.partial (where it is made, renamed
-/// to PATH when complete) and, for a test (`with_series`), PATH.series.csv; and none of them may
-/// be anything but a regular file, even with `force` (a rename would replace a device or FIFO).
+/// to PATH when complete), PATH.replacing (where it is made when it replaces one, RunFileTarget)
+/// and, for a test (`with_series`), their series CSVs; and none of them may be anything but a
+/// regular file, even with `force` (a rename would replace a device or FIFO).
 void check_new_run_file(const std::string& path, const std::vector<std::string>& inputs,
                         bool force, bool with_series);
+
+/// Where a run file that may replace an existing one is made: at its path when none is there,
+/// else at PATH.replacing (with its PATH.replacing.series.csv), moved over PATH by commit() once
+/// the run is complete, so that --force never destroys a good run before the new one is whole.
+/// A run that fails leaves PATH as it was and its own file at working_path().
+class RunFileTarget {
+ public:
+  /// `path` must have passed check_new_run_file (with the same `with_series`).
+  RunFileTarget(std::string path, bool with_series);
+  const std::string& path() const { return path_; }
+  const std::string& working_path() const { return working_; }
+  bool replaces() const { return working_ != path_; }
+  /// Calls write(working_path()) and then moves the finished run (and its series CSV) over the
+  /// old one. A failure is rethrown as std::runtime_error saying that PATH is kept and where the
+  /// failed run is.
+  void make(const std::function<void(const std::string&)>& write) const;
+
+ private:
+  std::string path_, working_;
+  bool with_series_;
+};
 
 /// Throws std::runtime_error naming the input that lies in `folder`, whose files a command writes
 /// (fe-check's summary.csv given as its parameter file was overwritten before).

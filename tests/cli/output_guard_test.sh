@@ -2,7 +2,8 @@
 # The output checks of the sffcal front end (apps/sffcal/output_guard.h), as a user meets them:
 # an existing output is refused without --force and left untouched, an output that is an input is
 # refused, a missing or non-folder destination is refused before any work, a failed write is an
-# error. Usage: output_guard_test.sh SFFCAL_BINARY. Exit status 0 when every check passes.
+# error, and --force replaces a run only once the new one is complete.
+# Usage: output_guard_test.sh SFFCAL_BINARY. Exit status 0 when every check passes.
 set -u
 sffcal=$1
 work=$(mktemp -d)
@@ -72,6 +73,29 @@ else
 fi
 test ! -e run.h5 && echo "ok   nothing was written by the refused commands" ||
   { echo "FAIL run.h5 was written"; failures=$((failures + 1)); }
+
+# --force never destroys a good run before the new one is whole: a replacing run is made beside
+# it (X.replacing) and moved over it only when complete.
+sed -e 's/^bodies = .*/bodies = 40/' -e 's/^threads = .*/threads = 1/' \
+  -e 's/^max_axial_strain = .*/max_axial_strain = 0.004/' original.toml > small.toml
+sed -e 's/^max_overlap_ratio = .*/max_overlap_ratio = 0.0001/' small.toml > fails.toml
+if "$sffcal" prepare -c small.toml -o small_specimen.h5 > /dev/null &&
+   "$sffcal" triaxial -c small.toml -s small_specimen.h5 -o keep.h5 > /dev/null; then
+  cp keep.h5 keep_before.h5
+  cp keep.h5.series.csv keep_before.csv
+  expect_failure "--force with a run that fails keeps the earlier run and says so" \
+    "'keep.h5' is kept as it was" "$sffcal" triaxial -c fails.toml -s small_specimen.h5 -o keep.h5 --force
+  expect_unchanged keep.h5 keep_before.h5 "... its run file unchanged"
+  expect_unchanged keep.h5.series.csv keep_before.csv "... and its series CSV"
+  if "$sffcal" triaxial -c small.toml -s small_specimen.h5 -o keep.h5 --force > /dev/null &&
+     [[ ! -e keep.h5.replacing && -s keep.h5 && -s keep.h5.series.csv ]]; then
+    echo "ok   --force with a run that completes replaces it (nothing left beside it)"
+  else
+    echo "FAIL --force with a run that completes"; failures=$((failures + 1))
+  fi
+else
+  echo "FAIL a small run for the --force checks"; failures=$((failures + 1))
+fi
 
 echo "$failures check(s) failed"
 exit $((failures > 0))
