@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "h5.h"
+#include "snapshot_check.h"
 #include "runfile/stored_physics.h"
 
 namespace runfile {
@@ -329,6 +330,7 @@ Snapshot RunFile::read_snapshot(int index) const {
     s.sphere_body = h5::read_dataset<std::int64_t>(g, "sphere_body", H5T_NATIVE_INT64);
     s.contacts = h5::read_dataset<ContactRecord>(g, "contacts", h5::contact_record_type().get());
     s.walls = h5::read_dataset<WallRecord>(g, "walls", h5::wall_record_type().get());
+    check_snapshot(s, flat.size());
     return s;
   });
 }

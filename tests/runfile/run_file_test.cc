@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runfile/dem_test.h"
@@ -231,6 +232,65 @@ TEST(RunFileContract, ANonHdf5FileIsRefusedByName) {
   { std::FILE* f = std::fopen(path.c_str(), "w"); std::fputs("not hdf5\n", f); std::fclose(f); }
   expect_error([&] { RunFile::open(path); }, {path, "not an HDF5 file"});
   expect_error([&] { read_dem_test(path); }, {path});
+  std::remove(path.c_str());
+}
+
+// Two bodies (a sphere on a wall, a clump) with one contact each kind: every reader gets a
+// consistent snapshot, and an edited one is refused naming the record at fault.
+Snapshot two_body_snapshot() {
+  Snapshot s;
+  s.step = 10;
+  s.time = 1e-6;
+  s.particles.resize(2);
+  s.particles[0].id = 0;
+  s.particles[0].sphere_diameter = 1e-4;
+  s.particles[1].id = 1;
+  s.particles[1].num_spheres = 2;
+  s.particles[1].sphere_diameter = 1e-4;
+  s.particles[1].position = {2e-4, 0.0, 0.0};
+  s.spheres = {{0.0, 0.0, 0.0, 5e-5}, {1.75e-4, 0.0, 0.0, 5e-5}, {2.25e-4, 0.0, 0.0, 5e-5}};
+  s.sphere_body = {0, 1, 1};
+  s.walls.resize(6);
+  for (int w = 0; w < 6; ++w) s.walls[w].axis = w / 2, s.walls[w].upper = w % 2;
+  ContactRecord pair;
+  pair.body_a = 0, pair.body_b = 1, pair.normal = {1.0, 0.0, 0.0}, pair.normal_force = 1e-3;
+  ContactRecord wall;
+  wall.body_b = 0, wall.wall = 0, wall.normal = {1.0, 0.0, 0.0}, wall.normal_force = 2e-3;
+  s.contacts = {pair, wall};
+  return s;
+}
+
+TEST(RunFileContract, AnInconsistentSnapshotIsRefusedNamingTheRecord) {
+  const std::string path = temp_path("snapshots.h5");
+  std::vector<std::pair<Snapshot, std::string>> cases;
+  cases.emplace_back(two_body_snapshot(), "");
+  cases.emplace_back(two_body_snapshot(), "contact 0 holds a value that is not finite");
+  cases.back().first.contacts[0].normal_force = std::nan("");
+  cases.emplace_back(two_body_snapshot(), "contact 1 refers to body 7");
+  cases.back().first.contacts[1].body_b = 7;
+  cases.emplace_back(two_body_snapshot(), "contact 1 refers to wall 6 of 6");
+  cases.back().first.contacts[1].wall = 6;
+  cases.emplace_back(two_body_snapshot(), "sphere 2 refers to body 2");
+  cases.back().first.sphere_body[2] = 2;
+  cases.emplace_back(two_body_snapshot(), "particle 1 repeats body id 0");
+  cases.back().first.particles[1].id = 0;
+  cases.emplace_back(two_body_snapshot(), "particle 0 holds a value that is not finite");
+  cases.back().first.particles[0].velocity[2] = INFINITY;
+  cases.emplace_back(two_body_snapshot(), "sphere 1 has a radius that is not positive");
+  cases.back().first.spheres[1][3] = 0.0;
+  cases.emplace_back(two_body_snapshot(), "wall 3 has axis 5");
+  cases.back().first.walls[3].axis = 5;
+  cases.emplace_back(two_body_snapshot(), "'sphere_body' has 2 entries for 3 spheres");
+  cases.back().first.sphere_body.pop_back();
+  {
+    RunFile file = RunFile::create(path, sample_metadata(), kTestSeries);
+    for (const auto& c : cases) file.write_snapshot(c.first);
+  }
+  const RunFile file = RunFile::open(path);
+  EXPECT_EQ(file.read_snapshot(0).contacts.size(), 2u);
+  for (int k = 1; k < static_cast<int>(cases.size()); ++k)
+    expect_error([&] { file.read_snapshot(k); },
+                 {path, "snapshot " + std::to_string(k), cases[static_cast<std::size_t>(k)].second});
   std::remove(path.c_str());
 }
 
