@@ -23,22 +23,21 @@ void check_new_run_file(const std::string& path, const std::vector<std::string>&
                         bool force, bool with_series);
 
 /// Where a run file that may replace an existing one is made: at its path when none is there,
-/// else at PATH.replacing (with its PATH.replacing.series.csv), moved over PATH by commit() once
+/// else at PATH.replacing (with its PATH.replacing.series.csv), moved over PATH by make() once
 /// the run is complete, so that --force never destroys a good run before the new one is whole.
-/// A run that fails leaves PATH as it was and its own file at working_path().
+/// A run that fails leaves PATH as it was and its own file at PATH.replacing.
 class RunFileTarget {
  public:
   /// `path` must have passed check_new_run_file (with the same `with_series`).
   RunFileTarget(std::string path, bool with_series);
   const std::string& path() const { return path_; }
-  const std::string& working_path() const { return working_; }
-  bool replaces() const { return working_ != path_; }
-  /// Calls write(working_path()) and then moves the finished run (and its series CSV) over the
-  /// old one. A failure is rethrown as std::runtime_error saying that PATH is kept and where the
-  /// failed run is.
+  /// Calls write(the path to make the run at) and then moves the finished run (and its series
+  /// CSV) over the old one. A failure is rethrown as std::runtime_error saying that PATH is kept
+  /// and where the failed run is.
   void make(const std::function<void(const std::string&)>& write) const;
 
  private:
+  bool replaces() const { return working_ != path_; }
   std::string path_, working_;
   bool with_series_;
 };

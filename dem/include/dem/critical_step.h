@@ -48,8 +48,8 @@ struct StabilityLimit {
   double guaranteed_time_step() const;
 };
 
-/// Iterations of the estimate at each list build: the Ritz value of 16 iterations lay within
-/// 2e-4 of the converged largest eigenvalue on jammed clump packings of 150, 1000 and 4000 bodies
+/// Iterations of the estimate at each list build: with 16 the step lay within 2e-4 of the
+/// converged limit on jammed clump packings of 1000 and 4000 bodies and 1.2e-3 on 10,000
 /// (bench/RESULTS.md, "The stability limit").
 constexpr int kStabilityIterations = 16;
 
