@@ -126,6 +126,10 @@ int main(int argc, char** argv) {
   fe_check->add_option("--dem-ev-tol", fe_check_options.dem_volumetric_tolerance,
                        "pass tolerance of the RMS volumetric strain error against DEM")
       ->capture_default_str();
+  fe_check->add_option("--time-limit", fe_check_options.time_limit,
+                       "wall-clock budget of each FE run (element, mesh) [s]; past it the run "
+                       "stops with a message (0: none)")
+      ->capture_default_str();
   bool fe_check_no_mesh = false;
   fe_check->add_flag("--no-mesh", fe_check_no_mesh, "skip the 2x2x4 mesh (the slow run)");
   fe_check->add_flag("-v,--verbose", fe_check_options.verbose, "print the Newton logs");

@@ -104,8 +104,8 @@ void set_search_range(FitOptions& options, const std::string& range) {
     const bool physical =
         i == kAcsIndex ? x > 0.0 : kParameterFields<double>[i].physical.contains(x);
     if (!physical)
-      throw std::runtime_error(usage + std::to_string(x) + " is not physical for '" + kNames[i] +
-                               "': it must be " +
+      throw std::runtime_error(usage + model::format_number(x) + " is not physical for '" +
+                               kNames[i] + "': it must be " +
                                (i == kAcsIndex ? std::string("> 0")
                                                : kParameterFields<double>[i].physical.describe()));
   }

@@ -173,6 +173,7 @@ Curve run_fe_triaxial(const Material& material, double confining_pressure,
   options.solver.residual_atol = mesh.residual_atol;
   options.solver.max_newton_iterations = mesh.max_newton_iterations;
   options.solver.max_cuts = mesh.max_cuts;
+  options.solver.wall_time_limit = mesh.wall_time_limit;
   options.solver.verbose = mesh.verbose;
   options.vtu_prefix = mesh.vtu_prefix;
   const TriaxialResult result = run_triaxial(material, options);

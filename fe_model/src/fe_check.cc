@@ -173,11 +173,12 @@ std::string format_value(double v) {
 }
 
 // The 2x2x4 mesh of every case, its VTU files in <folder>/vtu/.
-TriaxialMeshOptions check_mesh_options(const fs::path& folder, bool verbose) {
+TriaxialMeshOptions check_mesh_options(const fs::path& folder, const FeCheckOptions& options) {
   TriaxialMeshOptions mesh;
   mesh.cells_x = mesh.cells_y = 2;
   mesh.cells_z = 4;
-  mesh.verbose = verbose;
+  mesh.verbose = options.verbose;
+  mesh.wall_time_limit = options.time_limit;
   fs::create_directories(folder / "vtu");
   mesh.vtu_prefix = (folder / "vtu" / "mesh").string();
   return mesh;
@@ -360,8 +361,9 @@ Check network_check(const FeCheckOptions& options, const model::ParameterValues&
       for (unsigned int k = 0; k <= options.steps; ++k)
         nodes.push_back({options.max_strain * k / options.steps, 0.0, static_cast<int>(k),
                          k == 0 ? 0 : -1});
-      net::PathOptions driver_options;  // the element's substeps (network_update.h)
+      net::PathOptions driver_options;  // the element's substeps and budget (network_update.h)
       driver_options.substep_size = net::kUpdateSubstepSize;
+      driver_options.max_substeps = net::kMaxUpdateSubsteps;
       const net::Curve point = net::predict(parameters, net::diagonal_state(path_start), nodes,
                                             net::Lateral::kStressHeld, sigma_3, youngs_modulus,
                                             driver_options);
@@ -464,6 +466,8 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
     throw std::invalid_argument("--model-tol must be in [0, 1e-2] (0: no substep error control)");
   for (double p : options.pressures)
     if (!(p > 0.0)) throw std::invalid_argument("--pressures must be positive [Pa]");
+  if (!(options.time_limit >= 0.0 && std::isfinite(options.time_limit)))
+    throw std::invalid_argument("--time-limit must be >= 0 [s] (0: none)");
   if (!model::acst::is_admissible_void_ratio(options.void_ratio))
     throw std::invalid_argument("--void-ratio " + format_value(options.void_ratio) +
                                 " is not a void ratio the model can carry: it must be in (0, 2.97)");
@@ -489,6 +493,7 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
 
     TriaxialMeshOptions element_options;
     element_options.verbose = options.verbose;
+    element_options.wall_time_limit = options.time_limit;
     const Curve element = c.fe(element_options);
     write_curve_csv((folder / "element.csv").string(), element);
     log("  " + run_line(element, options.steps));
@@ -497,7 +502,7 @@ FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log)
                     check.driver_tolerance);
 
     if (options.mesh) {
-      const Curve mesh = c.fe(check_mesh_options(folder, options.verbose));
+      const Curve mesh = c.fe(check_mesh_options(folder, options));
       write_curve_csv((folder / "mesh.csv").string(), mesh);
       log("  " + run_line(mesh, options.steps));
       result.runs_completed = result.runs_completed && mesh.completed;

@@ -439,6 +439,14 @@ NewtonLog BasicSolid<LinearAlgebra>::solve_increment(double load_end) {
   minus_residual.reinit(solution_);
 
   for (int k = 0;; ++k) {
+    if (out_of_time()) {
+      std::ostringstream out;
+      out << "the run passed its wall-time limit of " << options_.wall_time_limit
+          << " s at Newton iteration " << k << " towards load factor " << load_end;
+      log.message = out.str();
+      log.out_of_time = true;
+      return log;
+    }
     std::string message;
     const MaterialStatus status = assemble(solution_, load_end, true, &message);
     log.worst_status = worst(log.worst_status, status);
@@ -487,6 +495,17 @@ NewtonLog BasicSolid<LinearAlgebra>::solve_increment(double load_end) {
     log.update_norms.push_back(correction.l2_norm());
     log.iterations = k + 1;
   }
+}
+
+template <typename LinearAlgebra>
+bool BasicSolid<LinearAlgebra>::out_of_time() const {
+  if (!(options_.wall_time_limit > 0.0)) return false;
+  double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - created_).count();
+  // One decision for all processes, or one would stop while the others wait in an assembly.
+  if constexpr (LinearAlgebra::kDistributed)
+    elapsed = dealii::Utilities::MPI::max(elapsed, communicator_);
+  return elapsed > options_.wall_time_limit;
 }
 
 template <typename LinearAlgebra>
@@ -590,6 +609,11 @@ StepReport BasicSolid<LinearAlgebra>::advance_to(double load_target) {
       continue;
     }
     revert();
+    if (report.attempts.back().out_of_time) {
+      report.message = failure;
+      report.load_reached = committed_load_;
+      return report;
+    }
     if (depth == options_.max_cuts) {
       std::ostringstream out;
       out << "load step to load factor " << load_target << " failed at load factor "

@@ -67,7 +67,7 @@ class AcstBehaviour final : public Behaviour {
                                 double* state) const override {
     const double e = inputs[0];
     if (!acst::is_admissible_void_ratio(e))
-      throw InvalidInput("void_ratio", "the initial void ratio " + std::to_string(e) +
+      throw InvalidInput("void_ratio", "the initial void ratio " + format_number(e) +
                                            " is not physical: it must be in (0, 2.97)");
     const Tensor<double> fabric = tensor_from_slot(inputs + 1);
     if (!fabric.allFinite()) throw InvalidInput("fabric", "the initial fabric is not finite");

@@ -95,7 +95,7 @@ bool is_admissible_void_ratio(double e) { return e > 0.0 && e < detail::kElastic
 void validate_parameters(const Parameters<double>& par) {
   auto fail = [](const char* name, double value, const std::string& range) {
     throw std::runtime_error(std::string("ACST parameter '") + name + "' = " +
-                             std::to_string(value) + " is not physical: it must be " + range);
+                             format_number(value) + " is not physical: it must be " + range);
   };
   for (const ParameterField<double>& field : kParameterFields<double>) {
     const double value = par.*field.member;
@@ -104,7 +104,7 @@ void validate_parameters(const Parameters<double>& par) {
   }
   // The two conditions that couple parameters (docs/model.md): a cone inside the critical one,
   // and a positive hardening factor 1 - c_h e.
-  if (!(par.m < par.c * par.M_c)) fail("m", par.m, "in (0, c M_c)");
+  if (!(par.m < par.c * par.M_c)) fail("m", par.m, "below c M_c");
   if (!(par.c_h * par.e_gamma < 1.0)) fail("c_h", par.c_h, ">= 0 with c_h e_gamma < 1");
 }
 

@@ -22,7 +22,7 @@ void check_values(const char* what, const std::string& model,
   for (std::size_t i = 0; i < table.size(); ++i)
     if (!std::isfinite(values[i]) || !table[i].physical.contains(values[i]))
       throw std::invalid_argument(model + " " + what + " '" + table[i].name + "' = " +
-                                  std::to_string(values[i]) + " is not physical: it must be " +
+                                  format_number(values[i]) + " is not physical: it must be " +
                                   table[i].physical.describe());
 }
 

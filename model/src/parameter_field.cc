@@ -6,14 +6,16 @@
 
 namespace model {
 
+std::string format_number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
 std::string ParameterRange::describe() const {
-  auto number = [](double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return std::string(text);
-  };
-  if (high == kUnbounded) return (low_closed ? ">= " : "> ") + number(low);
-  return std::string("in ") + (low_closed ? "[" : "(") + number(low) + ", " + number(high) +
+  if (high == kUnbounded) return (low_closed ? ">= " : "> ") + format_number(low);
+  return std::string("in ") + (low_closed ? "[" : "(") + format_number(low) + ", " +
+         format_number(high) +
          (high_closed ? "]" : ")");
 }
 

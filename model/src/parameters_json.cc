@@ -108,13 +108,6 @@ void write_json(const Json& root, const std::string& path) {
   if (!out) fail(path, "write failed");
 }
 
-// A number as the messages write it (%g).
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
 // {"value": x, "unit": info.unit} under `key` of `object`; absent: its value_if_absent, or an
 // error naming key_path if it has none.
 double read_value(const Json& object, const std::string& key, const std::string& key_path,
@@ -132,7 +125,7 @@ double read_value(const Json& object, const std::string& key, const std::string&
     fail(path, "key '" + key_path + ".unit' must be \"" + info.unit + "\"");
   const double x = entry["value"].get<double>();
   if (info.fixed() && x != info.physical.low)
-    fail(path, "key '" + key_path + "' must be {\"value\": " + number(info.physical.low) +
+    fail(path, "key '" + key_path + "' must be {\"value\": " + format_number(info.physical.low) +
                    ", \"unit\": \"" + info.unit + "\"} (fixed)");
   return x;
 }

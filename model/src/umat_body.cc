@@ -76,7 +76,7 @@ ParameterValues values_from_props(const ModelDescription& d, const double* props
     const double x = props[index];
     if (!std::isfinite(x) || !info.physical.contains(x))
       throw std::runtime_error(props_name(index, 1) + ", '" + info.name + "' = " +
-                               std::to_string(x) +
+                               format_number(x) +
                                (std::string(info.unit) == "1" ? "" : std::string(" ") + info.unit) +
                                ", is not physical: it must be " + info.physical.describe());
     return x;
@@ -112,6 +112,15 @@ const Behaviour& behaviour_for(const ModelDescription& d, const double* props, i
   cache.file = file;
   cache.given.assign(props + inputs, props + nprops);
   return *cache.behaviour;
+}
+
+// Throws std::runtime_error naming the first of the n values of the UMAT argument `name` that is
+// not finite (numbered from 1, as the FE code numbers it).
+void require_finite(const double* v, int n, const char* name) {
+  for (int k = 0; k < n; ++k)
+    if (!std::isfinite(v[k]))
+      throw std::runtime_error(std::string(name) + "(" + std::to_string(k + 1) + ") = " +
+                               std::to_string(v[k]) + " is not finite");
 }
 
 // The 3x3 matrix of DROT (Fortran order, column by column).
@@ -154,6 +163,10 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
                                props_name(0, inputs) + " must give the initial " + names);
     }
     const Behaviour& behaviour = behaviour_for(d, props, *nprops, inputs);
+    // A NaN or infinite input would come back as a clean update of NaN (linear elasticity passes
+    // it through): refused like a bad PROPS.
+    require_finite(stress, n, "STRESS");
+    require_finite(dstran, n, "DSTRAN");
 
     const Eigen::Matrix3d start_stress = from_abaqus(stress, n, -1.0, 1.0);  // compression +
     thread_local std::vector<double> start, end;
@@ -173,6 +186,8 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
         throw;
       }
     } else {
+      require_finite(statev, 1 + state_size, "STATEV");
+      require_finite(drot, 9, "DROT");
       std::copy(statev + 1, statev + 1 + state_size, start.begin());
       const Eigen::Matrix3d r = rotation_of(drot);
       if (!r.isIdentity(0.0)) rotate_state(d.state(), r, start.data());  // NLGEOM's DROT
@@ -182,6 +197,14 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
     to_ddsdde(update.tangent, ddsdde, n);
     if (update.status == UpdateStatus::kFailed) {
       report("update failed: " + update.message, noel, npt, pnewdt, update.step_ratio);
+      return;
+    }
+    // An answer that is not finite (finite inputs far out of range: a strain increment of 1e300)
+    // is a failed update whatever the model says: STRESS and STATEV are left as they came.
+    if (!update.stress.allFinite() || !update.tangent.allFinite() ||
+        !std::all_of(end.begin(), end.end(), [](double x) { return std::isfinite(x); })) {
+      if (!update.tangent.allFinite()) std::fill(ddsdde, ddsdde + n * n, 0.0);
+      report("update failed: its stress, tangent or state is not finite", noel, npt, pnewdt);
       return;
     }
     to_abaqus(update.stress, stress, n, -1.0);

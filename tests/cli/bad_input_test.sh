@@ -172,8 +172,20 @@ expect_failure "a parameter file with 1e400 names the file" "overflow.json" \
 sed 's/"value": 125.0/"value": NaN/' "$examples/acst_toyoura.json" > nan.json
 expect_failure "a parameter file with NaN names the file" "nan.json" \
   "$sffcal" fe-check --parameters nan.json --no-mesh -o fe
+# Bounded work: a cone narrower than the integration resolves in bounded substeps (m = 1e-8 ran
+# 69 s and failed its checks) is refused by value; an FE run past its wall-time budget stops by name.
+sed '/"m": {/,/}/ s/"value": 0.01/"value": 1e-8/' "$examples/acst_toyoura.json" > narrow_cone.json
+expect_failure "an ACST cone narrower than 1e-4 (minutes of substeps) is refused" \
+  "'m' = 1e-08 is not physical: it must be >= 0.0001" \
+  "$sffcal" fe-check --parameters narrow_cone.json --no-mesh -o fe
+expect_failure "fe-check --time-limit below 0" "--time-limit must be >= 0" \
+  "$sffcal" fe-check --parameters "$examples/acst_toyoura.json" --time-limit -1 --no-mesh -o fe
+expect_failure "an FE run past fe-check's --time-limit stops naming the limit" \
+  "wall-time limit of 1e-09 s" \
+  "$sffcal" fe-check --parameters "$examples/acst_toyoura.json" --time-limit 1e-9 --no-mesh \
+  --pressures 1e5 -o fe_time_limit
 expect_failure "calibrate --range beyond a parameter's physical range" \
-  "0.700000 is not physical for 'nu'" "$sffcal" calibrate small.toml -o fit --range nu=0:0.7
+  "0.7 is not physical for 'nu'" "$sffcal" calibrate small.toml -o fit --range nu=0:0.7
 expect_failure "calibrate --range with a name the fit does not know" "unknown parameter 'n_x'" \
   "$sffcal" calibrate small.toml -o fit --range n_x=0:1
 

@@ -51,6 +51,16 @@ void make_distorted_cube(dealii::Triangulation<3>& triangulation) {
 
 SymmetricTensor2 symmetric_part(const Tensor<2, 3>& g) { return dealii::symmetrize(g); }
 
+// The unit cube's base (face 4) held, its top (face 5) pressed down 1e-3 m at load factor 1; set up.
+void clamp_base_and_press_top(Solid& solid) {
+  solid.add_displacement_condition(
+      {4, {{true, true, true}}, [](const Point<3>&, double) { return Tensor<1, 3>(); }});
+  solid.add_displacement_condition({5, {{false, false, true}}, [](const Point<3>&, double load) {
+                                      return Tensor<1, 3>({0.0, 0.0, -1e-3 * load});
+                                    }});
+  solid.setup();
+}
+
 TEST(Solid, PatchTestReproducesConstantStrainAndStress) {
   dealii::Triangulation<3> triangulation;
   make_distorted_cube(triangulation);
@@ -252,18 +262,40 @@ TEST(Solid, RevertRestoresTheCommittedState) {
   dealii::GridGenerator::hyper_cube(triangulation, 0.0, 1.0, true);
   const LinearElasticMaterial material(10e6, 0.2);
   Solid solid(triangulation, material, SymmetricTensor2());
-  solid.add_displacement_condition(
-      {4, {{true, true, true}}, [](const Point<3>&, double) { return Tensor<1, 3>(); }});
-  solid.add_displacement_condition({5, {{false, false, true}}, [](const Point<3>&, double load) {
-                                      return Tensor<1, 3>({0.0, 0.0, -1e-3 * load});
-                                    }});
-  solid.setup();
+  clamp_base_and_press_top(solid);
   const NewtonLog log = solid.solve_increment(1.0);
   ASSERT_TRUE(log.converged);
   EXPECT_GT(solid.volume_averages().stress.norm(), 0.0);
   solid.revert();
   EXPECT_EQ(solid.solution().l2_norm(), 0.0);
   EXPECT_EQ(solid.volume_averages().stress.norm(), 0.0);
+}
+
+// The wall-time budget ends a run by name at the next Newton iteration, without cutting the step
+// (a smaller increment does not give time back); a budget not reached changes nothing.
+TEST(Solid, AWallTimeLimitStopsTheRunByNameWithoutCuts) {
+  for (const double limit : {1e-9, 1e6}) {
+    dealii::Triangulation<3> triangulation;
+    dealii::GridGenerator::hyper_cube(triangulation, 0.0, 1.0, true);
+    const LinearElasticMaterial material(10e6, 0.2);
+    SolverOptions options;
+    options.wall_time_limit = limit;
+    Solid solid(triangulation, material, SymmetricTensor2(), options);
+    clamp_base_and_press_top(solid);
+    const StepReport report = solid.advance_to(1.0);
+    if (limit > 1.0) {
+      EXPECT_TRUE(report.converged) << report.message;
+      continue;
+    }
+    EXPECT_FALSE(report.converged);
+    EXPECT_EQ(report.cuts, 0);
+    EXPECT_EQ(report.load_reached, 0.0);
+    ASSERT_EQ(report.attempts.size(), 1u);
+    EXPECT_TRUE(report.attempts.front().out_of_time);
+    EXPECT_NE(report.message.find("wall-time limit of 1e-09 s at Newton iteration 0"),
+              std::string::npos)
+        << report.message;
+  }
 }
 
 }  // namespace

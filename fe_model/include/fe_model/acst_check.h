@@ -55,7 +55,8 @@ struct TriaxialMeshOptions {
   double residual_atol = 1e-9;
   int max_newton_iterations = 20;
   int max_cuts = 12;
-  bool verbose = false;     ///< Newton residuals and ratios on stdout
+  double wall_time_limit = 0.0;  ///< [s] of the whole run; 0: none (SolverOptions)
+  bool verbose = false;          ///< Newton residuals and ratios on stdout
   std::string vtu_prefix;   ///< if not empty: <prefix>_<step:04>.vtu per converged step
 };
 

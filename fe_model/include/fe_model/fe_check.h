@@ -32,6 +32,10 @@ struct FeCheckOptions {
   double a_cs = 0.0;  ///< DEM fabric normalisation; 0: from the parameter file, else the default
   double dem_eta_tolerance = 0.10;         ///< pass: RMS error of q/p against the DEM
   double dem_volumetric_tolerance = 0.01;  ///< pass: RMS error of eps_v against the DEM
+  /// Wall-clock budget of each FE run (the element, the mesh) [s]; 0: none. A model whose update
+  /// needs thousands of substeps makes the mesh run for hours; past the budget the run stops
+  /// with a message naming it.
+  double time_limit = 600.0;
   bool mesh = true;      ///< run the 2x2x4 mesh (the slow part)
   bool verbose = false;  ///< Newton logs
 };

@@ -43,6 +43,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <string>
@@ -184,6 +185,8 @@ class BasicSolid {
   /// Solves tangent x = rhs for a Newton correction (SolverOptions::linear_solver); records the
   /// GMRES iterations in log.
   void solve_linear(const Vector& rhs, Vector& x, NewtonLog& log) const;
+  /// Past SolverOptions::wall_time_limit (every process gives the same answer).
+  bool out_of_time() const;
 
   const dealii::Triangulation<3>& triangulation_;
   const Material& material_;
@@ -214,6 +217,7 @@ class BasicSolid {
   Vector last_increment_;            // the last committed displacement increment
   double last_load_increment_ = 0.0;  // and its load increment (0: none yet)
   int last_unreliable_points_ = 0;
+  std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
 
   dealii::CellDataStorage<typename dealii::Triangulation<3>::cell_iterator, PointHistory> history_;
 };

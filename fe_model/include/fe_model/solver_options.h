@@ -49,6 +49,10 @@ struct SolverOptions {
   unsigned int iterative_min_dofs = 2000;
   /// Print the Newton log (residual norms and ratios) to std::cout.
   bool verbose = false;
+  /// Wall-clock budget of the solid's whole run [s], counted from its construction; 0: none. A
+  /// Newton iteration that starts past it ends the run with a message naming the budget (no cut:
+  /// a smaller increment does not give the time back). Distributed, the processes decide together.
+  double wall_time_limit = 0.0;
 };
 
 /// The record of one Newton solve (one attempted load increment).
@@ -69,6 +73,7 @@ struct NewtonLog {
   MaterialStatus worst_status = MaterialStatus::kOk;
   int n_unreliable_points = 0;
   std::string message;  ///< why it did not converge (empty if it did)
+  bool out_of_time = false;  ///< stopped by SolverOptions::wall_time_limit
 
   /// ||R_{k+1}|| / ||R_k||, k = 0 .. iterations-1.
   std::vector<double> residual_ratios() const;

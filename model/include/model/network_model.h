@@ -199,9 +199,8 @@ inline void validate(const Parameters<double>& par) {
     const double x = par.*f.member;
     if (!std::isfinite(x) || !f.physical.contains(x))
       throw std::invalid_argument(std::string("contact-network parameter ") + f.name + " = " +
-                                  std::to_string(x) + " is not within [" +
-                                  std::to_string(f.physical.low) + ", " +
-                                  std::to_string(f.physical.high) + "]");
+                                  format_number(x) + " is not physical: it must be " +
+                                  f.physical.describe());
   }
 }
 
