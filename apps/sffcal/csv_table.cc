@@ -1,16 +1,16 @@
 #include "csv_table.h"
 
-#include <fstream>
 #include <stdexcept>
 
 #include "runfile/run_file.h"
+#include "sffcal/output_file.h"
 
 namespace sffcal {
 
 void write_csv(const std::string& path, const std::vector<std::string>& columns,
                const std::vector<std::vector<double>>& rows) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
+  OutputFile file(path);
+  std::ostream& out = file.stream();
   out.precision(10);
   for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
   out << "\n";
@@ -18,7 +18,7 @@ void write_csv(const std::string& path, const std::vector<std::string>& columns,
     for (std::size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << row[c];
     out << "\n";
   }
-  if (!out) throw std::runtime_error("error while writing " + path);
+  file.commit();
 }
 
 void write_series_csv(const runfile::RunFile& file, const std::string& path) {

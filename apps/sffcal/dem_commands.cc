@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -16,6 +15,7 @@
 #include "csv_table.h"
 #include "output_guard.h"
 #include "progress.h"
+#include "sffcal/output_file.h"
 
 namespace sffcal {
 namespace {
@@ -103,10 +103,7 @@ int print_default_config(const std::string& out_path) {
     std::printf("%s", dem::default_run_config_text().c_str());
     return 0;
   }
-  std::ofstream out(out_path);
-  if (!out) throw std::runtime_error("cannot write " + out_path);
-  out << dem::default_run_config_text();
-  check_written(out, out_path);
+  write_text_file(out_path, dem::default_run_config_text());
   std::printf("wrote %s\n", out_path.c_str());
   return 0;
 }

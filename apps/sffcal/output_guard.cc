@@ -146,9 +146,4 @@ void check_output_folder(const std::string& folder) {
                              existing.string() + "' is not a writable folder");
 }
 
-void check_written(std::ostream& out, const std::string& path) {
-  out.flush();
-  if (!out) throw std::runtime_error("writing '" + path + "' failed (disk full or write error)");
-}
-
 }  // namespace sffcal

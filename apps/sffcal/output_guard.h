@@ -50,8 +50,4 @@ void check_inputs_outside(const std::string& folder, const std::vector<std::stri
 /// or does not exist and cannot be created because its nearest existing parent is not writable.
 void check_output_folder(const std::string& folder);
 
-/// Flushes `out` and throws std::runtime_error naming `path` if any write to it failed (a full
-/// disk, /dev/full).
-void check_written(std::ostream& out, const std::string& path);
-
 }  // namespace sffcal

@@ -3,7 +3,6 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -11,6 +10,7 @@
 
 #include "calibration/any_model_fit.h"
 #include "output_format.h"
+#include "sffcal/output_file.h"
 
 namespace calibration {
 namespace {
@@ -105,9 +105,8 @@ std::string write_any_model_fit_outputs(const std::string& folder,
   model::write_parameter_file((fs::path(folder) / "parameters.json").string(), result.values,
                               annotations, record.dump());
   const std::string summary = summary_markdown(description, result);
-  std::ofstream out(fs::path(folder) / "summary.md");
-  out << "# " << description.name() << ": calibration summary\n\n" << summary;
-  if (!out) throw std::runtime_error("cannot write summary.md in '" + folder + "'");
+  sffcal::write_text_file((fs::path(folder) / "summary.md").string(),
+                          "# " + description.name() + ": calibration summary\n\n" + summary);
   return summary;
 }
 

@@ -1,7 +1,6 @@
 // Outputs of the calibration: parameter file, curves, summary (docs/calibration.md).
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -9,6 +8,7 @@
 
 #include "calibration/fit.h"
 #include "output_format.h"
+#include "sffcal/output_file.h"
 
 namespace calibration {
 
@@ -203,9 +203,7 @@ std::string write_calibration_outputs(const std::string& folder,
               {t.snapshot_axial_strain, t.a_c, c.a_c});
   }
   const std::string summary = summary_markdown(result);
-  std::ofstream out(fs::path(folder) / "summary.md");
-  out << "# Calibration summary\n\n" << summary;
-  if (!out) throw std::runtime_error("cannot write summary.md in '" + folder + "'");
+  sffcal::write_text_file((fs::path(folder) / "summary.md").string(), "# Calibration summary\n\n" + summary);
   return summary;
 }
 

@@ -2,7 +2,6 @@
 // summary (network_fit.h, write_fit_outputs; docs/network-model.md, "Calibration").
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -10,6 +9,7 @@
 
 #include "calibration/network_fit.h"
 #include "output_format.h"
+#include "sffcal/output_file.h"
 
 namespace calibration::network {
 namespace {
@@ -187,9 +187,7 @@ std::string write_fit_outputs(const std::string& folder, const std::vector<TestD
   write_parameters_json(result.parameters, kDemYoungsModulus,
                         (fs::path(folder) / "parameters.json").string(), record.dump());
   const std::string summary = summary_markdown(outcomes, result);
-  std::ofstream out(fs::path(folder) / "summary.md");
-  out << "# Contact-network model: calibration summary\n\n" << summary;
-  if (!out) throw std::runtime_error("cannot write summary.md in '" + folder + "'");
+  sffcal::write_text_file((fs::path(folder) / "summary.md").string(), "# Contact-network model: calibration summary\n\n" + summary);
   return summary;
 }
 

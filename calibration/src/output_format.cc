@@ -1,10 +1,10 @@
 // Formatting shared by the fits' output writers (output_format.h).
 #include "output_format.h"
+#include "sffcal/output_file.h"
 
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -29,15 +29,15 @@ std::string utc_now() {
 
 void write_csv(const std::filesystem::path& path, const std::string& header,
                const std::vector<std::vector<double>>& columns) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+  sffcal::OutputFile file(path.string());
+  std::ostream& out = file.stream();
   out << header << '\n' << std::setprecision(10);
   const std::size_t n = columns.empty() ? 0 : columns[0].size();
   for (std::size_t k = 0; k < n; ++k) {
     for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c][k];
     out << '\n';
   }
-  if (!out) throw std::runtime_error("write failed: '" + path.string() + "'");
+  file.commit();
 }
 
 }  // namespace calibration::output

@@ -1,22 +1,15 @@
 #include "dem/vtk_writer.h"
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <string>
 #include <stdexcept>
 
+#include "sffcal/output_file.h"
 #include "sffcal/pvd.h"
 
 namespace dem {
 namespace {
-
-std::ofstream open_for_writing(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out.precision(10);
-  return out;
-}
 
 using BodyIndex = std::map<std::int64_t, const ParticleRecord*>;
 
@@ -40,7 +33,9 @@ const ParticleRecord& body(const BodyIndex& by_id, std::int64_t id, const char* 
 
 void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
   {
-    std::ofstream out = open_for_writing(stem + "_spheres.vtu");
+    sffcal::OutputFile file(stem + "_spheres.vtu");
+    std::ostream& out = file.stream();
+    out.precision(10);
     const std::size_t n = s.spheres.size();
     const BodyIndex by_id = index_by_id(s);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
@@ -64,6 +59,7 @@ void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
       out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
     }
     out << "</DataArray>\n</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+    file.commit();
   }
   {
     // Body-body contacts as lines between the two centroids (branch vectors).
@@ -71,7 +67,9 @@ void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
     for (const ContactRecord& c : s.contacts)
       if (c.wall < 0) contacts.push_back(&c);
     const BodyIndex by_id = index_by_id(s);
-    std::ofstream out = open_for_writing(stem + "_contacts.vtu");
+    sffcal::OutputFile file(stem + "_contacts.vtu");
+    std::ostream& out = file.stream();
+    out.precision(10);
     const std::size_t n = contacts.size();
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << 2 * n << "\" NumberOfCells=\"" << n << "\">\n"
@@ -93,6 +91,7 @@ void write_snapshot_vtu(const Snapshot& s, const std::string& stem) {
     out << "</DataArray>\n<DataArray type=\"Int32\" Name=\"sliding\" format=\"ascii\">\n";
     for (const ContactRecord* c : contacts) out << c->sliding << '\n';
     out << "</DataArray>\n</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+    file.commit();
   }
 }
 

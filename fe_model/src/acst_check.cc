@@ -6,7 +6,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -16,6 +15,7 @@
 #include "model/material_point.h"
 #include "fe_model/acst_material.h"
 #include "fe_model/triaxial.h"
+#include "sffcal/output_file.h"
 
 namespace fe_model {
 namespace {
@@ -286,8 +286,8 @@ std::optional<double> fabric_normalisation(const model::ParameterValues& values,
 }
 
 void write_curve_csv(const std::string& path, const Curve& curve) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot open " + path + " for writing");
+  sffcal::OutputFile file(path);
+  std::ostream& out = file.stream();
   out << "# sffcal fe-check curve '" << curve.label
       << "'; compression positive; stresses in Pa; fabric_invariant = F:n_c\n";
   out << "axial_strain,volumetric_strain,p,q,eta,void_ratio,fabric_invariant,newton_iterations,"
@@ -299,7 +299,7 @@ void write_curve_csv(const std::string& path, const Curve& curve) {
         << point.fabric_invariant << ',' << point.newton_iterations << ',' << point.cuts << ','
         << point.status << '\n';
   }
-  if (!out) throw std::runtime_error("write failed: " + path);
+  file.commit();
 }
 
 }  // namespace fe_model

@@ -5,7 +5,6 @@
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -22,6 +21,7 @@
 #include "model/network_path.h"
 #include "model/point_driver.h"
 #include "runfile/dem_test.h"
+#include "sffcal/output_file.h"
 
 namespace fe_model {
 namespace {
@@ -209,12 +209,13 @@ void add_dem_checks(std::vector<FeCheckRow>& checks, const std::string& case_nam
 }
 
 void write_summary(const fs::path& out_folder, const std::vector<FeCheckRow>& checks) {
-  std::ofstream summary(out_folder / "summary.csv");
+  sffcal::OutputFile file((out_folder / "summary.csv").string());
+  std::ostream& summary = file.stream();
   summary << "case,check,quantity,value,tolerance,result,note\n" << std::setprecision(6);
   for (const FeCheckRow& row : checks)
     summary << row.case_name << ',' << row.check << ',' << row.quantity << ',' << row.value << ','
             << row.tolerance << ',' << (row.pass ? "pass" : "fail") << ",\"" << row.note << "\"\n";
-  if (!summary) throw std::runtime_error("cannot write " + (out_folder / "summary.csv").string());
+  file.commit();
 }
 
 // The loading of every run: drained compression to --max-strain in --steps equal increments.

@@ -1,5 +1,6 @@
 // The deal.II core of fe_model: assembly, Newton-Raphson and step cutting (see solid.h).
 #include "fe_model/solid.h"
+#include "sffcal/output_file.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>
@@ -803,9 +804,9 @@ void BasicSolid<LinearAlgebra>::write_vtu(const std::string& filename) const {
     data_out.write_vtu_in_parallel(filename, communicator_);
   } else {
     data_out.build_patches();
-    std::ofstream out(filename);
-    if (!out) throw std::runtime_error("cannot open " + filename + " for writing");
-    data_out.write_vtu(out);
+    sffcal::OutputFile file(filename);
+    data_out.write_vtu(file.stream());
+    file.commit();
   }
 }
 

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <iomanip>
 #include <iostream>
@@ -18,6 +17,7 @@
 
 #include "fe_model/solid.h"
 #include "sffcal/pvd.h"
+#include "sffcal/output_file.h"
 
 namespace fe_model {
 namespace {
@@ -177,8 +177,8 @@ TriaxialResult run_triaxial(const Material& material, const TriaxialOptions& opt
 }
 
 void write_triaxial_csv(const std::string& path, const std::vector<TriaxialStep>& steps) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot open " + path + " for writing");
+  sffcal::OutputFile file(path);
+  std::ostream& out = file.stream();
   const bool has_fabric = !steps.empty() && steps.front().fabric_invariant.has_value();
   out << "# fe_model triaxial test; compression positive; stresses in Pa\n";
   out << "step,axial_strain,volumetric_strain,p,q,axial_stress,radial_stress";
@@ -193,6 +193,7 @@ void write_triaxial_csv(const std::string& path, const std::vector<TriaxialStep>
         << (row.residual_norms.empty() ? 0.0 : row.residual_norms.back()) << ','
         << to_string(row.worst_status) << '\n';
   }
+  file.commit();
 }
 
 }  // namespace fe_model

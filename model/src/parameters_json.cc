@@ -12,7 +12,6 @@
 #include <array>
 #include <cctype>
 #include <cstdio>
-#include <fstream>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -25,6 +24,7 @@
 #include "model/parameter_file.h"
 #include "parameter_vector.h"
 #include "sffcal/read_text_file.h"
+#include "sffcal/output_file.h"
 
 namespace model {
 
@@ -102,10 +102,7 @@ void merge_extra(Json& root, const std::string& extra_json_object, const std::st
 }
 
 void write_json(const Json& root, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) fail(path, "cannot be written");
-  out << root.dump(2) << '\n';
-  if (!out) fail(path, "write failed");
+  sffcal::write_text_file(path, root.dump(2) + '\n');
 }
 
 // {"value": x, "unit": info.unit} under `key` of `object`; absent: its value_if_absent, or an

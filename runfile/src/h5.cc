@@ -1,6 +1,12 @@
 #include "h5.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 
 #include "runfile/records.h"
@@ -213,8 +219,38 @@ template std::vector<ParticleRecord> read_dataset(hid_t, const std::string&, hid
 template std::vector<ContactRecord> read_dataset(hid_t, const std::string&, hid_t, std::size_t*);
 template std::vector<WallRecord> read_dataset(hid_t, const std::string&, hid_t, std::size_t*);
 
+namespace {
+
+// The file descriptor under a file of HDF5's default (sec2) driver, or -1.
+int file_descriptor(hid_t file) {
+  void* handle = nullptr;
+  if (H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) < 0 || handle == nullptr) return -1;
+  return *static_cast<int*>(handle);
+}
+
+}  // namespace
+
+void reserve_space(hid_t file, std::uint64_t bytes) {
+  haddr_t end = 0;
+  const int fd = file_descriptor(file);
+  if (fd < 0 || H5Fget_eoa(file, &end) < 0) return;
+  const int error = posix_fallocate(fd, static_cast<off_t>(end), static_cast<off_t>(bytes));
+  if (error == ENOSPC || error == EDQUOT || error == EFBIG)
+    throw std::runtime_error("no room on the disk for the next " + std::to_string(bytes) +
+                             " bytes (" + std::strerror(error) + ")");
+}
+
+void release_space(hid_t file) {
+  haddr_t end = 0;
+  struct stat status {};
+  const int fd = file_descriptor(file);
+  if (fd < 0 || H5Fget_eoa(file, &end) < 0 || fstat(fd, &status) != 0) return;
+  if (static_cast<haddr_t>(status.st_size) > end)
+    (void)!ftruncate(fd, static_cast<off_t>(end));
+}
+
 void create_extendible(hid_t location, const std::string& name) {
-  const hsize_t dims[1] = {0}, max_dims[1] = {H5S_UNLIMITED}, chunk[1] = {1024};
+  const hsize_t dims[1] = {0}, max_dims[1] = {H5S_UNLIMITED}, chunk[1] = {kExtendibleChunkRows};
   Handle space = check(H5Screate_simple(1, dims, max_dims), "create dataspace for " + name);
   Handle plist = check(H5Pcreate(H5P_DATASET_CREATE), "create a property list");
   H5Pset_chunk(plist.get(), 1, chunk);

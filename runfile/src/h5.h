@@ -79,6 +79,17 @@ template <typename T>
 std::vector<T> read_dataset(hid_t location, const std::string& name, hid_t type,
                             std::size_t* cols = nullptr);
 
+/// Rows of an extendible dataset's chunk: an append that starts a chunk allocates this many.
+inline constexpr std::size_t kExtendibleChunkRows = 1024;
+
+/// Allocates `bytes` of disk from the file's end of allocation (posix_fallocate), so that the
+/// writes and the flush that follow cannot meet a full disk halfway, which leaves a file HDF5
+/// cannot open. Throws std::runtime_error ("no room on the disk ...") where the disk or the
+/// quota has not that much; a file system that cannot allocate ahead is left as it is.
+void reserve_space(hid_t file, std::uint64_t bytes);
+/// Gives back what reserve_space allocated beyond the end of allocation (after a flush).
+void release_space(hid_t file);
+
 /// An extendible 1-D dataset of doubles (unlimited length, chunked, not compressed: a compressed
 /// chunk moves in the file each time it grows, and a kill between the move and the next flush
 /// left it unreadable).

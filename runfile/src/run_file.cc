@@ -1,5 +1,6 @@
 #include "runfile/run_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -105,7 +106,20 @@ struct RunFile::Impl {
   std::int64_t schema_version = kSchemaVersion;
 
   hid_t id() const { return file.get(); }
-  void flush() const { h5::check_status(H5Fflush(id(), H5F_SCOPE_GLOBAL), "flush"); }
+  // A full disk met halfway through a flush leaves a file HDF5 cannot open; so every write and
+  // every flush first allocates the disk it may use (h5::reserve_space): the data's bytes and a
+  // margin for the metadata a flush writes (object headers, index and name-table nodes: a few kB
+  // per object). On a full disk it is the allocation that fails, before anything changes, and
+  // the file stays that of the last flush.
+  void reserve(std::uint64_t data_bytes) const {
+    constexpr std::uint64_t kMetadataBytes = 64 * 1024;
+    h5::reserve_space(id(), data_bytes + kMetadataBytes);
+  }
+  void flush() const {
+    reserve(0);
+    h5::check_status(H5Fflush(id(), H5F_SCOPE_GLOBAL), "flush");
+    h5::release_space(id());
+  }
   // Makes `object`, written unlinked, reachable at `where` in place of what was there, so that a
   // run killed at any moment finds at `where` the old object or the new one, each whole: the new
   // one reaches the disk in a flush before any link to it, and the old one is unlinked in the
@@ -137,7 +151,11 @@ RunFile::RunFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 RunFile::RunFile(RunFile&&) noexcept = default;
 RunFile& RunFile::operator=(RunFile&&) noexcept = default;
 RunFile::~RunFile() {
-  if (impl_ && impl_->writable && impl_->file.valid()) H5Fflush(impl_->id(), H5F_SCOPE_GLOBAL);
+  if (!(impl_ && impl_->writable && impl_->file.valid())) return;
+  try {
+    impl_->flush();
+  } catch (const std::exception&) {  // reported where the write failed
+  }
 }
 
 RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
@@ -154,8 +172,14 @@ RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
     impl->guard("create", [&] {
       const h5::Handle creation = h5::crash_safe_creation_properties();
       const h5::Handle access = h5::crash_safe_access_properties();
-      impl->file = h5::check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()),
-                             "create the file (is the folder there and writable?)");
+      errno = 0;
+      const hid_t created =
+          H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, creation.get(), access.get());
+      impl->file = h5::check(created, std::string("create the file (") +
+                                          (errno != 0 ? std::strerror(errno)
+                                                      : "is the folder there and writable?") +
+                                          ")");
+      impl->reserve(metadata.config_text.size());
       const hid_t root = impl->id();
       h5::write_attribute(root, "schema_version", kSchemaVersion);
       h5::write_attribute(root, "program", std::string("sffcal"));
@@ -235,6 +259,7 @@ RunMetadata RunFile::metadata() const {
 
 void RunFile::write_note(const std::string& key, const std::string& text) {
   impl_->guard("write note " + key, [&] {
+    impl_->reserve(text.size());
     h5::write_attribute(impl_->id(), "note:" + key, text);
     return 0;
   });
@@ -256,6 +281,9 @@ void RunFile::append_series(const std::vector<double>& row) {
                                 std::to_string(row.size()) + " values for " +
                                 std::to_string(impl_->series_names.size()) + " series");
   impl_->guard("append to /series", [&] {
+    // A row that starts the series' next chunks allocates them whole (at the flush).
+    const bool new_chunks = series_length() % h5::kExtendibleChunkRows == 0;
+    impl_->reserve(row.size() * sizeof(double) * (new_chunks ? h5::kExtendibleChunkRows : 1));
     h5::Handle series = h5::open_group(impl_->id(), "series");
     for (std::size_t k = 0; k < row.size(); ++k)
       h5::append(series.get(), impl_->series_names[k], row[k]);
@@ -284,6 +312,9 @@ std::vector<double> RunFile::series(const std::string& name) const {
 void RunFile::write_snapshot(const Snapshot& s) {
   const int index = num_snapshots();
   impl_->guard("write snapshot", [&] {
+    auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
+    impl_->reserve(bytes(s.particles) + bytes(s.spheres) + bytes(s.sphere_body) +
+                   bytes(s.contacts) + bytes(s.walls));
     h5::Handle group = h5::create_unlinked_group(impl_->id());
     const hid_t g = group.get();
     h5::write_attribute(g, "step", s.step);
@@ -356,6 +387,7 @@ std::string TestSummary::describe() const {
 
 void RunFile::write_summary(const TestSummary& summary) {
   impl_->guard("write /summary", [&] {
+    impl_->reserve(0);
     h5::Handle group = h5::create_unlinked_group(impl_->id());
     const hid_t g = group.get();
     h5::write_attribute(g, "ended", std::string(summary.reached_critical_state ? "critical_state"
@@ -442,6 +474,7 @@ template <typename T>
 void StateWriter::array(const std::string& name, const T* data, std::size_t rows,
                         std::size_t columns) {
   impl_->owner().guard("write checkpoint", [&] {
+    impl_->owner().reserve(rows * std::max<std::size_t>(columns, 1) * sizeof(T));
     h5::write_dataset(impl_->group.get(), name, native_type<T>(), data, rows, columns);
     return 0;
   });
@@ -449,6 +482,7 @@ void StateWriter::array(const std::string& name, const T* data, std::size_t rows
 
 void StateWriter::walls(const std::vector<WallRecord>& walls) {
   impl_->owner().guard("write checkpoint", [&] {
+    impl_->owner().reserve(walls.size() * sizeof(WallRecord));
     h5::write_dataset(impl_->group.get(), "walls", h5::wall_record_type().get(), walls.data(),
                       walls.size());
     return 0;
@@ -471,6 +505,7 @@ StateWriter RunFile::begin_checkpoint() {
   impl_->guard("write checkpoint", [&] {
     // Written unlinked and put in place of the old one by commit(): a run killed while writing
     // still has the previous checkpoint.
+    impl_->reserve(0);
     const hid_t root = impl_->id();
     if (h5::exists(root, kNewCheckpoint))  // left by sffcal 0.1, which renamed it in place
       H5Ldelete(root, kNewCheckpoint, H5P_DEFAULT);
@@ -557,6 +592,7 @@ StateReader RunFile::read_checkpoint() const {
 void RunFile::rewind_to_checkpoint() {
   impl_->guard("rewind to the checkpoint", [&] {
     if (!impl_->writable) throw std::runtime_error("the file is open read-only");
+    impl_->reserve(0);
     h5::Handle group = h5::open_group(impl_->id(), kCheckpoint);
     // A checkpoint is written after its series rows and snapshots: it can only be behind them.
     // Counts beyond them (an edited or foreign file) would grow /series to any length.
@@ -592,6 +628,7 @@ RUNFILE_STATE_TYPE(std::uint8_t)
 void RunFile::write_table(const std::string& name, const std::vector<std::string>& columns,
                           const std::vector<std::vector<double>>& rows) {
   impl_->guard("write table /analysis/" + name, [&] {
+    impl_->reserve(rows.size() * columns.size() * sizeof(double));
     const std::string path = "analysis/" + name;
     h5::Handle group = h5::create_unlinked_group(impl_->id());
     std::string joined;
