@@ -2,10 +2,12 @@
 # Builds CalculiX ccx 2.20 from Debian's own source package with sffcal's UMAT linked in place of
 # ccx's example umat.f: BUILD/calculix/ccx_sffcal (docs/fe.md, "CalculiX"). Debian's ccx binary
 # cannot load a user material at run time, and its material "ABAQUS..." runs that example (linear
-# elasticity with E = PROPS(1)) without a word; this ccx calls libsffcal_umat.so instead.
+# elasticity with E = PROPS(1)) without a word; this ccx calls libsffcal_umat_calculix.so instead
+# (the UMAT without DROT: CalculiX gives a user material its stress and strain in the material's
+# own axes, model/src/umat_calculix.cc).
 #
 # Usage: scripts/build_calculix.sh [BUILD]   (BUILD: the project's build folder, default build; its
-#        model/libsffcal_umat.so must exist: scripts/build.sh first)
+#        model/libsffcal_umat_calculix.so must exist: scripts/build.sh first)
 # Needs the source package, hence a deb-src line for bookworm main; where apt has none, this script
 # adds /etc/apt/sources.list.d/sffcal-deb-src.sources (with sudo unless root):
 #   Types: deb-src
@@ -17,8 +19,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=$(cd "${1:-build}" && pwd)
 lib_dir=$build/model
-[ -f "$lib_dir/libsffcal_umat.so" ] || {
-  echo "build_calculix: $lib_dir/libsffcal_umat.so not found: run scripts/build.sh first" >&2; exit 1; }
+[ -f "$lib_dir/libsffcal_umat_calculix.so" ] || {
+  echo "build_calculix: $lib_dir/libsffcal_umat_calculix.so not found: run scripts/build.sh first" >&2
+  exit 1
+}
 version=2.20
 work=$build/calculix
 mkdir -p "$work"
@@ -48,6 +52,6 @@ make -s -j"$(nproc)" "ccx_$version.a" CFLAGS="$cflags" FFLAGS="$fflags" > "$work
 cp "ccx_$version.a" ccx_sffcal.a
 ar d ccx_sffcal.a umat.o
 eval "cc $cflags -c ccx_$version.c -o ccx_main.o"
-gfortran -O2 -o "$work/ccx_sffcal" ccx_main.o ccx_sffcal.a -L"$lib_dir" -lsffcal_umat \
+gfortran -O2 -o "$work/ccx_sffcal" ccx_main.o ccx_sffcal.a -L"$lib_dir" -lsffcal_umat_calculix \
   -Wl,-rpath,"$lib_dir" -lspooles -lpthread -larpack -llapack -lblas -lm -lc -fopenmp
-echo "build_calculix: $work/ccx_sffcal (CalculiX $version with $lib_dir/libsffcal_umat.so)"
+echo "build_calculix: $work/ccx_sffcal (CalculiX $version with $lib_dir/libsffcal_umat_calculix.so)"
