@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "sffcal/final_window.h"
+#include "sffcal/format_number.h"
 
 namespace dem {
 namespace {
@@ -304,6 +305,36 @@ bool TriaxialTest::critical_state(std::size_t* window_start) const {
                                  window_start);
 }
 
+// A checkpoint follows the row and the snapshot of its own step, after which the thresholds moved
+// one interval on: the rows and snapshots the file keeps with it (its series_length and
+// num_snapshots) must end there. Counts edited or damaged would drop or repeat rows and snapshots.
+void TriaxialTest::check_output_counters(const RunFile& file) const {
+  auto refuse = [](const std::string& why) {
+    throw std::invalid_argument("triaxial: the checkpoint does not follow the rows and snapshots "
+                                "the file keeps with it: " + why);
+  };
+  // Half an interval of slack: a row falls within one step of its threshold.
+  auto follows = [](double last, double next, double interval) {
+    return std::abs(next - (last + interval)) <= 0.5 * interval;
+  };
+  if (history_strain_.empty()) refuse("it keeps no series row");
+  const double last_row = history_strain_.back();
+  if (!follows(last_row, next_output_, options_.output_strain_interval))
+    refuse("the last of its " + std::to_string(history_strain_.size()) +
+           " series rows is at axial strain " + sffcal::format_number(last_row) +
+           ", and its next row is due at " + sffcal::format_number(next_output_) +
+           " (one output interval on: " + sffcal::format_number(options_.output_strain_interval) + ")");
+  const int snapshots = file.num_snapshots();
+  if (snapshots < 1) refuse("it keeps no snapshot (the first is taken with the first row)");
+  const double last_snapshot = direction_ * file.read_snapshot(snapshots - 1).axial_strain;
+  if (!(last_snapshot < next_snapshot_ &&
+        next_snapshot_ <= last_snapshot + options_.snapshot_strain_interval * (1.0 + 1e-9)))
+    refuse("the last of its " + std::to_string(snapshots) + " snapshots is at axial strain " +
+           sffcal::format_number(last_snapshot) + ", and its next is due at " +
+           sffcal::format_number(next_snapshot_) + " (within one snapshot interval, " +
+           sffcal::format_number(options_.snapshot_strain_interval) + ", after it)");
+}
+
 CheckpointExtras TriaxialTest::extras() const {
   return {{"height0", height0_}, {"width0_x", width0_[0]}, {"width0_y", width0_[1]},
           {"volume0", volume0_}, {"next_output", next_output_},
@@ -345,8 +376,8 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       const double value = need(name);
       if (strict ? !(value > low) : !(value >= low))
         throw std::invalid_argument(std::string("triaxial: the checkpoint's '") + name + "' = " +
-                                    std::to_string(value) + " must be " +
-                                    (strict ? "above " : "at least ") + std::to_string(low));
+                                    sffcal::format_number(value) + " must be " +
+                                    (strict ? "above " : "at least ") + sffcal::format_number(low));
       return value;
     };
     height0_ = need_at_least("height0", 0.0, true);
@@ -369,7 +400,10 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
                                     "step count");
       test_start_step_ = static_cast<std::int64_t>(first);
     }
-    if (lateral_targets_follow_axial_stress(options_.path)) resumed_axial_stress = need("axial_stress");
+    if (x.count("axial_stress")) {  // older checkpoints lack it; the drained paths do not use it
+      const double axial_stress = need("axial_stress");
+      if (lateral_targets_follow_axial_stress(options_.path)) resumed_axial_stress = axial_stress;
+    }
     drive_platens();
     if (file) {
       history_strain_ = file->series("axial_strain");
@@ -378,6 +412,7 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
       history_volume_ = file->series("volumetric_strain");
       history_mean_stress_ = file->series("p");
       for (double& p : history_mean_stress_) p /= options_.confining_stress;
+      check_output_counters(*file);
     }
   }
   // The paths whose lateral walls follow the platens or the axial stress are set step by step;

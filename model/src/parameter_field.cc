@@ -1,16 +1,13 @@
 // The parameter tables' shared row (parameter_field.h).
 #include "model/parameter_field.h"
 
-#include <cstdio>
 #include <string>
+
+#include "sffcal/format_number.h"
 
 namespace model {
 
-std::string format_number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
+std::string format_number(double x) { return sffcal::format_number(x); }
 
 std::string ParameterRange::describe() const {
   if (high == kUnbounded) return (low_closed ? ">= " : "> ") + format_number(low);

@@ -117,6 +117,8 @@ class TriaxialTest {
  private:
   double axial_strain() const;
   double path_strain() const { return direction_ * axial_strain(); }  ///< |eps_a| along the path
+  /// Refuses a resumed checkpoint whose rows or snapshots do not end where its state does.
+  void check_output_counters(const RunFile& file) const;
   double void_ratio() const;
   void drive_platens();
   /// Sets the lateral walls for the next step: the path's stress targets at the axial stress
