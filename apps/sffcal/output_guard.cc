@@ -35,7 +35,7 @@ fs::path parent_of(const fs::path& path) {
   return parent.empty() ? fs::path(".") : parent;
 }
 
-constexpr const char* kReplacing = ".replacing";
+constexpr const char* kReplacing = ".replacing-";
 
 }  // namespace
 
@@ -68,12 +68,9 @@ void check_new_output_file(const std::string& path, const std::vector<std::strin
 
 void check_new_run_file(const std::string& path, const std::vector<std::string>& inputs,
                         bool force, bool with_series) {
-  std::vector<std::string> outputs;
-  for (const std::string& run : {path, path + kReplacing}) {
-    outputs.push_back(run);
-    outputs.push_back(run + ".partial");
-    if (with_series) outputs.push_back(run + ".series.csv");
-  }
+  // The files made beside it (PATH.partial-PID-N, PATH.replacing-PID-N) have names no file holds.
+  std::vector<std::string> outputs = {path};
+  if (with_series) outputs.push_back(path + ".series.csv");
   for (const std::string& output : outputs) {
     check_new_output_file(output, inputs, force);
     // A run file is made beside its name and renamed over it: only a regular file is ever
@@ -89,7 +86,15 @@ void check_new_run_file(const std::string& path, const std::vector<std::string>&
 RunFileTarget::RunFileTarget(std::string path, bool with_series)
     : path_(std::move(path)), with_series_(with_series) {
   std::error_code error;
-  working_ = fs::exists(path_, error) ? path_ + kReplacing : path_;
+  if (!fs::exists(path_, error)) {
+    working_ = path_;
+    return;
+  }
+  const std::string stem = path_ + kReplacing + std::to_string(::getpid()) + "-";
+  for (int k = 0; working_.empty(); ++k)
+    if (!fs::exists(stem + std::to_string(k), error) &&
+        !fs::exists(stem + std::to_string(k) + ".series.csv", error))
+      working_ = stem + std::to_string(k);
 }
 
 void RunFileTarget::make(const std::function<void(const std::string&)>& write) const {

@@ -15,17 +15,17 @@ namespace sffcal {
 void check_new_output_file(const std::string& path, const std::vector<std::string>& inputs,
                            bool force);
 
-/// The same for a run file and the files written beside it: PATH.partial (where it is made, renamed
-/// to PATH when complete), PATH.replacing (where it is made when it replaces one, RunFileTarget)
-/// and, for a test (`with_series`), their series CSVs; and none of them may be anything but a
-/// regular file, even with `force` (a rename would replace a device or FIFO).
+/// The same for a run file and, for a test (`with_series`), its series CSV; and neither may be
+/// anything but a regular file, even with `force` (a rename would replace a device or FIFO). The
+/// files made beside them (PATH.partial-PID-N, where a run file is made before it is renamed to
+/// PATH; PATH.replacing-PID-N, where a run that replaces one is made) take names no file holds.
 void check_new_run_file(const std::string& path, const std::vector<std::string>& inputs,
                         bool force, bool with_series);
 
 /// Where a run file that may replace an existing one is made: at its path when none is there,
-/// else at PATH.replacing (with its PATH.replacing.series.csv), moved over PATH by make() once
+/// else at PATH.replacing-PID-N (with its series CSV beside it), moved over PATH by make() once
 /// the run is complete, so that --force never destroys a good run before the new one is whole.
-/// A run that fails leaves PATH as it was and its own file at PATH.replacing.
+/// A run that fails leaves PATH as it was and names its own file.
 class RunFileTarget {
  public:
   /// `path` must have passed check_new_run_file (with the same `with_series`).

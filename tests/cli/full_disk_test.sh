@@ -94,7 +94,7 @@ expect_named_failure "sff -o on a full disk fails by name" "disk full" \
   "$sffcal" sff whole.h5 -o "$disk/sff"
 expect_named_failure "config -o on a full disk fails by name" "disk full" \
   "$sffcal" config -o "$disk/config.toml"
-left=$(find "$disk" \( -empty -type f -o -name '*.partial*' -o -name '*.replacing' \) -print)
+left=$(find "$disk" \( -empty -type f -o -name '*.partial*' -o -name '*.replacing*' \) -print)
 if [ -z "$left" ] && [ ! -e "$disk/config.toml" ]; then
   pass "no empty, partial or cut-short file is left"
 else

@@ -77,7 +77,7 @@ test ! -e run.h5 && echo "ok   nothing was written by the refused commands" ||
   { echo "FAIL run.h5 was written"; failures=$((failures + 1)); }
 
 # --force never destroys a good run before the new one is whole: a replacing run is made beside
-# it (X.replacing) and moved over it only when complete.
+# it (X.replacing-PID-N) and moved over it only when complete.
 sed -e 's/^bodies = .*/bodies = 40/' -e 's/^threads = .*/threads = 1/' \
   -e 's/^max_axial_strain = .*/max_axial_strain = 0.004/' original.toml > small.toml
 sed -e 's/^max_overlap_ratio = .*/max_overlap_ratio = 0.0001/' small.toml > fails.toml
@@ -89,8 +89,11 @@ if "$sffcal" prepare -c small.toml -o small_specimen.h5 > /dev/null &&
     "'keep.h5' is kept as it was" "$sffcal" triaxial -c fails.toml -s small_specimen.h5 -o keep.h5 --force
   expect_unchanged keep.h5 keep_before.h5 "... its run file unchanged"
   expect_unchanged keep.h5.series.csv keep_before.csv "... and its series CSV"
+  # The failed run's own file stays beside it, named in its message; the completed one leaves none.
+  left_before=$(ls keep.h5.replacing-* keep.h5.partial-* 2> /dev/null | wc -l)
   if "$sffcal" triaxial -c small.toml -s small_specimen.h5 -o keep.h5 --force > /dev/null &&
-     [[ ! -e keep.h5.replacing && -s keep.h5 && -s keep.h5.series.csv ]]; then
+     [ "$(ls keep.h5.replacing-* keep.h5.partial-* 2> /dev/null | wc -l)" -eq "$left_before" ] &&
+     [[ -s keep.h5 && -s keep.h5.series.csv ]]; then
     echo "ok   --force with a run that completes replaces it (nothing left beside it)"
   else
     echo "FAIL --force with a run that completes"; failures=$((failures + 1))
