@@ -163,8 +163,8 @@ std::string Particles::check() const {
   for (std::size_t b = 0; b < n; ++b) {
     const int first = first_sphere[b], count = num_body_spheres[b];
     if (count < 1 || count > 2 || first < 0 || static_cast<std::size_t>(first) + count > ns) {
-      e << "body " << id[b] << ": spheres [" << first << ", " << first + count
-        << ") outside the " << ns << " spheres; ";
+      e << "body " << id[b] << ": spheres [" << first << ", "
+        << static_cast<std::int64_t>(first) + count << ") outside the " << ns << " spheres; ";
       return e.str();
     }
     for (int k = first; k < first + count; ++k)

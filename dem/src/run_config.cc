@@ -104,8 +104,11 @@ Setter integer(Int& target, long long min_value,
                    std::min<unsigned long long>(std::numeric_limits<Int>::max(),
                                                 std::numeric_limits<long long>::max()))) {
   return [&target, min_value, max_value](const toml::node& n, const std::string& key) {
+    // An integer node first: toml++ converts a float node (1e118) to an integer by a cast whose
+    // result is undefined outside the integer's range.
+    if (!n.is_integer()) throw std::invalid_argument(key + " must be an integer");
     const auto v = n.value<long long>();
-    if (!v || !n.is_integer()) throw std::invalid_argument(key + " must be an integer");
+    if (!v) throw std::invalid_argument(key + " must be an integer");
     if (*v < min_value || *v > max_value)
       throw std::invalid_argument(key + " must be in [" + std::to_string(min_value) + ", " +
                                   std::to_string(max_value) + "] (got " + std::to_string(*v) +

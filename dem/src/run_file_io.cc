@@ -7,6 +7,10 @@
 namespace dem {
 namespace {
 
+// The largest step or list-build count a checkpoint may hold (2^62: a run of 10^9 steps a second
+// for a century stays far below it, and counting on from it never wraps).
+constexpr std::int64_t kMaxCount = std::int64_t{1} << 62;
+
 // ---- flat views of the engine's arrays ----
 void write_vec3(runfile::StateWriter& out, const std::string& name,
                 const std::vector<Eigen::Vector3d>& v) {
@@ -128,6 +132,10 @@ SimulationState read_checkpoint(RunFile& file, CheckpointExtras* extras) {
   s.step_count = in.integer("step_count");
   s.rebuild_due = in.integer("rebuild_due") != 0;
   s.max_sphere_move = in.real("max_sphere_move");
+  // The counters go on counting from here: far below where they would wrap.
+  if (!(std::isfinite(s.time) && s.time >= 0.0) || s.step_count < 0 ||
+      s.step_count > kMaxCount || !(std::isfinite(s.max_sphere_move) && s.max_sphere_move >= 0.0))
+    fail("the checkpoint's time, step_count or max_sphere_move is out of range");
   if (extras) *extras = in.extras();
 
   Particles& p = s.particles;
@@ -166,6 +174,13 @@ SimulationState read_checkpoint(RunFile& file, CheckpointExtras* extras) {
   c.build_wall_position = in.array<double>("build_wall_position");
   const std::string particles_error = p.check();
   if (!particles_error.empty()) fail("the checkpoint's bodies: " + particles_error);
+  // Particles::check follows the spheres of each body; a sphere of no body (its body id past the
+  // bodies: body arrays shorter than the sphere arrays say) would be followed by the engine.
+  std::size_t owned = 0;
+  for (const std::int8_t count : p.num_body_spheres) owned += static_cast<std::size_t>(count);
+  if (owned != p.sphere_radius.size())
+    fail("the checkpoint's bodies own " + std::to_string(owned) + " spheres of " +
+         std::to_string(p.sphere_radius.size()));
 
   for (const WallRecord& r : in.walls()) {
     Wall w;
@@ -188,9 +203,14 @@ SimulationState read_checkpoint(RunFile& file, CheckpointExtras* extras) {
   for (std::size_t w = 0; w < s.walls.size(); ++w) s.servo.push_back({last_move[w], integral[w]});
   const std::string contacts_error = c.check(p.num_spheres(), static_cast<int>(s.walls.size()));
   if (!contacts_error.empty()) fail("the checkpoint's contact list: " + contacts_error);
+  // A list without its build positions (a state never stepped) must be built at the first step:
+  // without a rebuild due, that step measures every move from the positions that are not there.
+  if (!s.rebuild_due && (c.build_position.size() != p.sphere_radius.size() ||
+                         c.build_wall_position.size() != s.walls.size()))
+    fail("the checkpoint's contact list has no build positions, and no rebuild is due");
   const double skin = in.real("skin");
   const std::int64_t num_builds = in.integer("num_builds");
-  if (!(std::isfinite(skin) && skin >= 0.0) || num_builds < 0)
+  if (!(std::isfinite(skin) && skin >= 0.0) || num_builds < 0 || num_builds > kMaxCount)
     fail("the checkpoint's skin or num_builds is out of range");
   c.restore(skin, num_builds, p.num_spheres());
   if (file.writable()) file.rewind_to_checkpoint();

@@ -92,7 +92,14 @@ Eigen::Matrix3d particle_axis_fabric(const Particles& particles) {
 Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
                            Eigen::Vector3d* hi, double max_overlap_ratio) {
   // A packing row is under 100 bytes: 1 GB holds ten million bodies, and refuses a device.
-  std::istringstream in(sffcal::read_text_file(path, std::uintmax_t{1} << 30, "packing file"));
+  return parse_csv_packing(sffcal::read_text_file(path, std::uintmax_t{1} << 30, "packing file"),
+                           path, grains, lo, hi, max_overlap_ratio);
+}
+
+Particles parse_csv_packing(const std::string& text, const std::string& path,
+                            const GrainSpec& grains, Eigen::Vector3d* lo, Eigen::Vector3d* hi,
+                            double max_overlap_ratio) {
+  std::istringstream in(text);
   Particles particles;
   bool have_box = false, have_header = false;
   std::string line;
@@ -113,6 +120,7 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
         *lo = {v[0], v[1], v[2]};
         *hi = {v[3], v[4], v[5]};
         if (!((*hi - *lo).minCoeff() > 0.0)) fail("the box must have hi > lo on every axis");
+        if (!(*hi - *lo).allFinite()) fail("the box must have a finite size (hi - lo)");
         have_box = true;
       }
       continue;
@@ -152,6 +160,15 @@ Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eig
     const int b = particles.add_body({0.5 * v[6], grains.centre_distance_ratio * v[6]},
                                      grains.density, centre, q);
     if (v.size() == 10) particles.velocity[b] = {v[7], v[8], v[9]};
+    // A diameter far from any grain's (1e150 m, 1e-300 m) overflows or underflows the mass.
+    auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+    if (!positive(particles.mass[b]) || !positive(particles.volume[b]) ||
+        !positive(particles.inertia_axial[b]) || !positive(particles.inertia_transverse[b])) {
+      std::ostringstream msg;
+      msg << "a body of diameter " << v[6] << " m has a mass or inertia that is not a positive "
+          << "finite number";
+      fail(msg.str());
+    }
   }
   if (!have_box) throw std::invalid_argument(path + ": no '# box: xlo ylo zlo xhi yhi zhi' line");
   if (particles.num_bodies() == 0) throw std::invalid_argument(path + ": no bodies");

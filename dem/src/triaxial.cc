@@ -323,7 +323,8 @@ void TriaxialTest::check_output_counters(const RunFile& file) const {
     refuse("the last of its " + std::to_string(history_strain_.size()) +
            " series rows is at axial strain " + sffcal::format_number(last_row) +
            ", and its next row is due at " + sffcal::format_number(next_output_) +
-           " (one output interval on: " + sffcal::format_number(options_.output_strain_interval) + ")");
+           " (one output interval on: " +
+           sffcal::format_number(options_.output_strain_interval) + ")");
   const int snapshots = file.num_snapshots();
   if (snapshots < 1) refuse("it keeps no snapshot (the first is taken with the first row)");
   const double last_snapshot = direction_ * file.read_snapshot(snapshots - 1).axial_strain;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -62,5 +63,20 @@ void report(const std::string& message, const int* noel, const int* npt, double*
             double step_ratio = 0.5);
 
 }  // namespace model::umat_detail
+
+/// The UMAT under the name Abaqus/Standard calls (the Fortran convention, CMNAME's length last):
+/// the model CMNAME chooses (umat_model) through umat_body. Defined by the shared libraries'
+/// sources (umat_fortran.cc; umat_calculix.cc for CalculiX), never by the model library.
+extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* sse, double* spd,
+                      double* scd, double* rpl, double* ddsddt, double* drplde, double* drpldt,
+                      const double* stran, const double* dstran, const double* time,
+                      const double* dtime, const double* temp, const double* dtemp,
+                      const double* predef, const double* dpred, const char* cmname,
+                      const int* ndi, const int* nshr, const int* ntens, const int* nstatv,
+                      const double* props, const int* nprops, const double* coords,
+                      const double* drot, double* pnewdt, const double* celent,
+                      const double* dfgrd0, const double* dfgrd1, const int* noel,
+                      const int* npt, const int* layer, const int* kspt, const int* kstep,
+                      const int* kinc, size_t cmname_length);
 
 #endif  // SFFCAL_MODEL_UMAT_COMMON_H_

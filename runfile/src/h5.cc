@@ -99,8 +99,16 @@ void write_scalar_attribute(hid_t object, const std::string& name, hid_t type,
   check_status(H5Awrite(attr.get(), type, value), "write attribute " + name);
 }
 
+// An attribute read into one value: one of any other size (an edited file's [2, 2]) would be
+// read past that value.
 Handle open_attribute(hid_t object, const std::string& name) {
-  return check(H5Aopen(object, name.c_str(), H5P_DEFAULT), "open attribute " + name);
+  Handle attr = check(H5Aopen(object, name.c_str(), H5P_DEFAULT), "open attribute " + name);
+  Handle space = check(H5Aget_space(attr.get()), "get the dataspace of attribute " + name);
+  const hssize_t values = H5Sget_simple_extent_npoints(space.get());
+  if (values != 1)
+    throw std::runtime_error("HDF5: attribute " + name + " holds " + std::to_string(values) +
+                             " values where one is expected");
+  return attr;
 }
 
 }  // namespace

@@ -107,6 +107,22 @@ with h5py.File(sys.argv[1], "r+") as f:
         g.attrs["series_length"] = np.int64(10**9)
     elif case == "snapshots_ahead":
         g.attrs["num_snapshots"] = np.int64(-1)
+    elif case == "series_behind":  # rows would be dropped: the state is past them
+        g.attrs["series_length"] = np.int64(g.attrs["series_length"] - 3)
+    elif case == "snapshots_behind":
+        g.attrs["num_snapshots"] = np.int64(0)
+    elif case == "nan_axial_stress":
+        g["extras"].attrs["axial_stress"] = np.nan
+    elif case == "nan_servo":
+        s = g["wall_servo_integral"][:]
+        s[0] = np.nan
+        g["wall_servo_integral"][...] = s
+    elif case == "spinning":  # finite, and it ran on
+        L = g["angular_momentum"][:]
+        L[0] = 1e300
+        g["angular_momentum"][...] = L
+    elif case == "two_values":  # read into one value, it overflowed the stack
+        f.attrs["schema_version"] = np.array([2, 2], dtype=np.int64)
     elif case == "nan_p":
         p = f["series/p"][:]
         p[1] = np.nan
@@ -129,7 +145,10 @@ EOF
            nan_position:"not finite" first_sphere:"outside the" \
            nan_extra:"'height0' is not finite" zero_height:"'height0' = 0" \
            negative_width:"'width0_x' = -0.001" series_ahead:"series_length 1000000000" \
-           snapshots_ahead:"num_snapshots -1"; do
+           snapshots_ahead:"num_snapshots -1" series_behind:"its next row is due at" \
+           snapshots_behind:"it keeps no snapshot" nan_axial_stress:"'axial_stress' is not finite" \
+           nan_servo:"servo state of wall 0 is not finite" spinning:"more than half the contact" \
+           two_values:"holds 2 values where one is expected"; do
     name=${c%%:*}
     cp run.h5 "$name.h5"
     tamper "$name.h5" "$name"

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 #include "dem/triaxial.h"
@@ -186,6 +187,50 @@ TEST(RunFile, ATamperedStateIsRefusedNamingTheArray) {
   expect_refused(s, "outside the");
   // The untouched state is accepted.
   EXPECT_NO_THROW(Simulation(SimulationState(good), specimen.contact_parameters(), specimen.options()));
+}
+
+// A checkpoint the engine cannot run from is refused by read_checkpoint itself, naming what is
+// wrong (found by fuzz/checkpoint_fuzzer.cc, each read back by the engine out of bounds or
+// wrapping a counter): a list with no build positions and no rebuild due, body arrays one body
+// short of the sphere arrays (a sphere of no body), a step count at the largest integer, and a
+// body whose sphere range ends past the largest int (named without wrapping).
+TEST(RunFile, ACheckpointTheEngineCannotRunFromIsRefusedByName) {
+  const Simulation specimen = testing::compacted_specimen(40, 0.3, 3);
+  const SimulationState good = specimen.state();
+  ASSERT_FALSE(good.rebuild_due);
+  const std::string path = temp_path("unrunnable_checkpoint.h5");
+  auto expect_refused = [&](const SimulationState& state, const std::string& fragment) {
+    {
+      RunFile file = RunFile::create(path, runfile::RunMetadata{"specimen", "", 3, "test"}, {});
+      write_checkpoint(file, state, {});
+    }
+    RunFile file = RunFile::open(path);
+    try {
+      read_checkpoint(file, nullptr);
+      ADD_FAILURE() << "read a checkpoint with " << fragment;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  SimulationState s = good;
+  s.contacts.build_wall_position.clear();
+  expect_refused(s, "has no build positions, and no rebuild is due");
+  s = good;
+  Particles& p = s.particles;
+  for (auto* v : {&p.position, &p.velocity, &p.angular_momentum, &p.angular_velocity}) v->pop_back();
+  for (auto* v : {&p.mass, &p.inertia_axial, &p.inertia_transverse, &p.volume}) v->pop_back();
+  p.id.pop_back();
+  p.orientation.pop_back();
+  p.first_sphere.pop_back();
+  p.num_body_spheres.pop_back();
+  expect_refused(s, "the checkpoint's bodies own 78 spheres of 80");
+  s = good;
+  s.step_count = std::numeric_limits<std::int64_t>::max();
+  expect_refused(s, "step_count");
+  s = good;
+  s.particles.first_sphere[0] = std::numeric_limits<int>::max();
+  expect_refused(s, ": spheres [2147483647, 2147483649) outside the 80 spheres");
+  std::remove(path.c_str());
 }
 
 // A real kill: a child process shearing with a spatial re-sort at every list build is killed with

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <utility>
 
 #include "dem/run_config.h"
 #include "sffcal/constants.h"
@@ -59,6 +60,9 @@ TEST(RunConfig, BadInputNamesTheKey) {
   expect_error("[grains]\nmin_diameter = -1e-5\n", "grains.min_diameter");
   expect_error("[contact]\nfriction = -0.2\n", "friction");
   expect_error("bodies = \"ten\"\n", "bodies must be an integer");
+  // A float beyond the integers is refused as a float, never cast (undefined behaviour: UBSan,
+  // SFFCAL_SANITIZE, stops here without the check; found by fuzz/config_fuzzer.cc).
+  expect_error("bodies = 1e118\n", "bodies must be an integer");
   expect_error("bodies = 1\n", "bodies must be in [2, 10000000] (got 1)");
   // Range-checked before narrowing to int: 2^32 + 80 must not run 80 bodies, 2^32 + 1 threads one.
   expect_error("bodies = 4294967376\n", "bodies must be in [2, 10000000] (got 4294967376)");
@@ -199,6 +203,38 @@ TEST(Preparation, LoadsACsvPackingAndNamesBadLines) {
       const std::string what = e.what();
       EXPECT_NE(what.find("body 1 (data row 2) overlaps the z upper wall of the box by 0.33"),
                 std::string::npos) << what;
+    }
+  }
+  std::remove(path.c_str());
+}
+
+// Finite numbers that make no finite packing are refused by line (found by
+// fuzz/csv_packing_fuzzer.cc): a box from -1e308 to 1e308 (an infinite size, compacted for
+// thousands of steps before), a diameter whose mass overflows (1e150 m) or underflows (1e-300 m)
+// (refused later by the engine, naming no file or line).
+TEST(Preparation, ACsvPackingOfNoFiniteSizeOrMassIsRefusedByLine) {
+  const std::string path = ::testing::TempDir() + "/sffcal_pack_" + std::to_string(getpid()) + ".csv";
+  const std::pair<std::string, std::string> cases[] = {
+      {"# box: -1e308 0 0 1e308 4e-4 4e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n"
+       "0,2e-4,2e-4,1,0,0,5e-5\n",
+       ":1: the box must have a finite size"},
+      {"# box: 0 0 0 1e200 1e200 1e200\nx,y,z,axis_x,axis_y,axis_z,diameter\n"
+       "5e199,5e199,5e199,1,0,0,1e150\n",
+       ":3: a body of diameter 1e+150 m has a mass or inertia that is not"},
+      {"# box: 0 0 0 4e-4 4e-4 4e-4\nx,y,z,axis_x,axis_y,axis_z,diameter\n"
+       "2e-4,2e-4,2e-4,1,0,0,1e-300\n",
+       ":3: a body of diameter 1e-300 m has a mass or inertia that is not"}};
+  for (const auto& [text, fragment] : cases) {
+    {
+      std::ofstream out(path);
+      out << text;
+    }
+    Eigen::Vector3d lo, hi;
+    try {
+      load_csv_packing(path, GrainSpec{}, &lo, &hi);
+      ADD_FAILURE() << "accepted:\n" << text;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
     }
   }
   std::remove(path.c_str());

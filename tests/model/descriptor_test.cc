@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -205,6 +206,49 @@ TEST(ModelInterface, AFailureAsksForASmallerIncrementWhateverPnewdtCameIn) {
   bad.pnewdt_in = 0.2;  // an FE code's own smaller request is kept
   bad.call(dstran);
   EXPECT_EQ(bad.pnewdt, 0.2);
+}
+
+// A NaN or infinite STRESS, DSTRAN, STATEV or DROT, and an answer that is not finite (a strain
+// increment of 1e300 through linear elasticity), are refused by name with a cut step, STRESS and
+// STATEV left as they came (found by fuzz/umat_fuzzer.cc: linear elasticity returned a NaN
+// strain increment as a clean update of NaN stress).
+TEST(ModelInterface, ANonFiniteInputOrAnswerIsRefusedWithACutStep) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Case {
+    double stress_11, dstran_33;
+    const char* fragment;
+  };
+  for (const Case& c : {Case{-1e5, nan, "DSTRAN(3)"}, Case{inf, -1e-4, "STRESS(1)"},
+                        Case{-1e5, -1e300, "not finite"}}) {
+    Point pt{"LINEAR_ELASTIC", {2e8, 0.25}};
+    pt.stress[0] = c.stress_11;
+    pt.stress[1] = pt.stress[2] = -1e5;
+    const double dstran[6] = {0, 0, c.dstran_33, 0, 0, 0};
+    pt.call(dstran);
+    EXPECT_EQ(pt.pnewdt, 0.5) << c.fragment;
+    EXPECT_NE(std::string(sffcal_umat_last_message()).find(c.fragment), std::string::npos)
+        << sffcal_umat_last_message();
+    EXPECT_EQ(pt.stress[2], -1e5);
+    EXPECT_EQ(pt.statev[0], 0.0);
+  }
+  // After the first increment (STATEV(1) = 1): a NaN in STATEV, or in DROT.
+  const double dstran[6] = {0, 0, -1e-4, 0, 0, 0};
+  Point bad_state{"LINEAR_ELASTIC", {2e8, 0.25}};
+  bad_state.statev[0] = nan;
+  bad_state.call(dstran);
+  EXPECT_EQ(bad_state.pnewdt, 0.5);
+  EXPECT_NE(std::string(sffcal_umat_last_message()).find("STATEV(1)"), std::string::npos)
+      << sffcal_umat_last_message();
+  EXPECT_EQ(bad_state.stress[2], 0.0);
+  Point bad_rotation{"LINEAR_ELASTIC", {2e8, 0.25}};
+  bad_rotation.statev[0] = 1.0;
+  Eigen::Matrix3d drot = Eigen::Matrix3d::Identity();
+  drot(1, 0) = nan;
+  bad_rotation.call(dstran, drot);
+  EXPECT_EQ(bad_rotation.pnewdt, 0.5);
+  EXPECT_NE(std::string(sffcal_umat_last_message()).find("DROT(2)"), std::string::npos)
+      << sffcal_umat_last_message();
 }
 
 Eigen::Matrix3d rotation_about_3(double angle) {

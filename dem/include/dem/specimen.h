@@ -61,5 +61,9 @@ Eigen::Matrix3d particle_axis_fabric(const Particles& particles);
 Particles load_csv_packing(const std::string& path, const GrainSpec& grains, Eigen::Vector3d* lo,
                            Eigen::Vector3d* hi,
                            double max_overlap_ratio = SimulationOptions{}.max_overlap_ratio);
+/// The same from the text of a packing file; `path` (where it came from) begins every message.
+Particles parse_csv_packing(const std::string& text, const std::string& path,
+                            const GrainSpec& grains, Eigen::Vector3d* lo, Eigen::Vector3d* hi,
+                            double max_overlap_ratio = SimulationOptions{}.max_overlap_ratio);
 
 }  // namespace dem

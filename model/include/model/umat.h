@@ -34,8 +34,9 @@
  * An update that fails, or is unreliable (its error estimate above the model's bound: the
  * increment is too large), sets PNEWDT to at most 0.5 (Abaqus repeats the increment with a smaller
  * one); a failed update leaves STRESS and STATEV unchanged, DDSDDE the elastic stiffness at the
- * start. A bad PROPS, NTENS or parameter file
- * is reported the same way, with a message on stderr and in sffcal_umat_last_message().
+ * start. A bad PROPS, NTENS or parameter file, a STRESS, DSTRAN, STATEV or DROT that is not finite,
+ * or an update whose answer is not finite, is reported the same way, with a message on stderr and
+ * in sffcal_umat_last_message().
  * SSE, SPD, SCD, RPL and the temperature terms are not touched.
  */
 #ifndef SFFCAL_MODEL_UMAT_H_

@@ -55,8 +55,8 @@
  * DDSDDE: the exact consistent tangent (unsymmetric). The tensors of STATEV are turned by DROT
  * (Delta R X Delta R^T) before each increment. A failed update (more than 10,000 substeps, or a
  * state that leaves the admissible range) leaves STRESS and STATEV unchanged, DDSDDE the tangent
- * of a zero increment at the start; it, a bad PROPS, NTENS or parameter file set PNEWDT to at
- * most 0.5, with a message on stderr and in sffcal_umat_last_message(). The layout is the
+ * of a zero increment at the start; it, a bad PROPS, NTENS or parameter file, or an argument or
+ * answer that is not finite set PNEWDT to at most 0.5, with a message on stderr and in sffcal_umat_last_message(). The layout is the
  * network's description (model/descriptor.h) through the body every model's UMAT shares.
  */
 #ifndef SFFCAL_MODEL_UMAT_NETWORK_H_
