@@ -1,6 +1,7 @@
 # `cmake --install build --prefix P`: the constitutive model (sffcal::model, with its parameter
 # file reader and the UMAT entry sffcal_umat), the UMAT shared library for Abaqus (sffcal::umat,
-# umat_), the one for CalculiX (sffcal::umat_calculix, umat_ without DROT) and the deal.II material interface (sffcal::fe_model), their headers and a CMake package:
+# umat_), the one for CalculiX (sffcal::umat_calculix, umat_ without DROT) and the deal.II
+# material interface (sffcal::fe_model), their headers and a CMake package:
 #   find_package(sffcal CONFIG REQUIRED)   # HINTS P/lib/cmake/sffcal, or CMAKE_PREFIX_PATH=P
 # The model's interface needs only Eigen; sffcal::fe_model needs deal.II (found by the package).
 include(CMakePackageConfigHelpers)

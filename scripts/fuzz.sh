@@ -4,7 +4,8 @@
 # the corpus first: a regression run). Reproducers of a crash, leak, time-out or out-of-memory are
 # kept in BUILD/findings/<target>/, each target's log in BUILD/findings/<target>.log. Prints one
 # line per target; exits 1 if any target found anything.
-# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=30] [BUILD=build-fuzz]
+# Usage: [FUZZ_SEED=N] scripts/fuzz.sh [SECONDS_PER_TARGET=30] [BUILD=build-fuzz]
+# FUZZ_SEED: libFuzzer's -seed (default 0: a random seed, printed in each target's log).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
@@ -38,7 +39,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$work" "$findings"
   cp fuzz/corpus/"$target"/* "$work"/ 2> /dev/null || true
   options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
-           -artifact_prefix="$findings/")
+           -seed="${FUZZ_SEED:-0}" -artifact_prefix="$findings/")
   [ -f "fuzz/dict/$target.dict" ] && options+=(-dict="fuzz/dict/$target.dict")
   # Every refused UMAT call prints its message on stderr, as FE codes want; libFuzzer's own
   # output and the sanitizers' reports still reach the log.

@@ -10,6 +10,8 @@
 #include <system_error>
 #include <utility>
 
+#include "sffcal/unique_name.h"
+
 namespace sffcal {
 namespace {
 
@@ -35,7 +37,7 @@ fs::path parent_of(const fs::path& path) {
   return parent.empty() ? fs::path(".") : parent;
 }
 
-constexpr const char* kReplacing = ".replacing-";
+constexpr const char* kReplacing = ".replacing";
 
 }  // namespace
 
@@ -90,11 +92,7 @@ RunFileTarget::RunFileTarget(std::string path, bool with_series)
     working_ = path_;
     return;
   }
-  const std::string stem = path_ + kReplacing + std::to_string(::getpid()) + "-";
-  for (int k = 0; working_.empty(); ++k)
-    if (!fs::exists(stem + std::to_string(k), error) &&
-        !fs::exists(stem + std::to_string(k) + ".series.csv", error))
-      working_ = stem + std::to_string(k);
+  working_ = claim_unique_name(path_ + kReplacing);
 }
 
 void RunFileTarget::make(const std::function<void(const std::string&)>& write) const {
@@ -102,6 +100,12 @@ void RunFileTarget::make(const std::function<void(const std::string&)>& write) c
     write(working_);
   } catch (const std::exception& e) {
     if (!replaces()) throw;
+    std::error_code error;
+    if (fs::is_empty(working_, error)) {  // claimed, and no run file made there
+      fs::remove(working_, error);
+      throw std::runtime_error(std::string(e.what()) + "\n  (the existing '" + path_ +
+                               "' is kept as it was)");
+    }
     throw std::runtime_error(std::string(e.what()) + "\n  (the existing '" + path_ +
                              "' is kept as it was; this run's file is '" + working_ + "')");
   }

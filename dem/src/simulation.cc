@@ -116,10 +116,10 @@ Simulation::Simulation(SimulationState state, ContactParameters contact,
   check_restored_motion();
 }
 
-// A saved state comes from outside (a checkpoint): its servo must be finite, and no body may move
-// or turn a sphere's surface by more than half the list's skin in one step, past which the list
-// can miss a contact (a run's own motion stays orders of magnitude below; an angular momentum of
-// 1e300 ran on, finite).
+// A state from outside (a checkpoint, a CSV packing with velocities): its servo must be finite,
+// and no body may move or turn the surface of one of its spheres by more than that sphere's
+// radius in one step. A run cannot get there (its overlaps would have stopped it as unstable),
+// the contact law's increments assume far less, and an angular momentum of 1e300 ran on, finite.
 void Simulation::check_restored_motion() const {
   for (std::size_t w = 0; w < servo_.size(); ++w)
     if (!std::isfinite(servo_[w].last_move) || !std::isfinite(servo_[w].integral))
@@ -127,19 +127,19 @@ void Simulation::check_restored_motion() const {
                                   std::to_string(w) + " is not finite");
   const Particles& P = particles_;
   for (int b = 0; b < P.num_bodies(); ++b) {
-    double reach = 0.0;  // the farthest sphere surface from the body's centroid [m]
-    for (int s = P.first_sphere[b]; s < P.first_sphere[b] + P.num_body_spheres[b]; ++s)
-      reach = std::max(reach, std::abs(P.sphere_offset[s]) + P.sphere_radius[s]);
     const double inertia =
         std::min(P.inertia_axial[b], P.inertia_transverse[b]) * options_.density_scaling;
     const double spin = P.angular_momentum[b].stableNorm() / inertia;  // an upper bound [rad/s]
-    const double move = (P.velocity[b].stableNorm() + spin * reach) * dt_;
-    if (!(move <= 0.5 * skin_)) {
+    const double speed = P.velocity[b].stableNorm();
+    for (int s = P.first_sphere[b]; s < P.first_sphere[b] + P.num_body_spheres[b]; ++s) {
+      const double r = P.sphere_radius[s];
+      const double move = (speed + spin * (std::abs(P.sphere_offset[s]) + r)) * dt_;
+      if (move <= r) continue;
       std::ostringstream msg;
-      msg << "Simulation: the saved state moves body " << P.id[b] << " by " << move
-          << " m in one step (speed " << P.velocity[b].stableNorm() << " m/s, spin up to " << spin
-          << " rad/s, time step " << dt_ << " s), more than half the contact list's skin "
-          << skin_ << " m: not a state a run leaves";
+      msg << "Simulation: the state to start from moves a sphere of body " << P.id[b] << " by "
+          << move << " m in one step (speed " << speed << " m/s, spin up to " << spin
+          << " rad/s, time step " << dt_ << " s), more than its radius " << r
+          << " m: not a state a run reaches";
       throw std::invalid_argument(msg.str());
     }
   }

@@ -1,6 +1,5 @@
 // The deal.II core of fe_model: assembly, Newton-Raphson and step cutting (see solid.h).
 #include "fe_model/solid.h"
-#include "sffcal/output_file.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>
@@ -31,6 +30,8 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+
+#include "sffcal/output_file.h"
 
 namespace fe_model {
 namespace {

@@ -200,10 +200,11 @@ void umat_body(const ModelDescription& d, double* stress, double* statev, double
       return;
     }
     // An answer that is not finite (finite inputs far out of range: a strain increment of 1e300)
-    // is a failed update whatever the model says: STRESS and STATEV are left as they came.
+    // is a failed update whatever the model says: STRESS and STATEV are left as they came, and
+    // DDSDDE is zero, as for a refused input (its tangent belongs to an answer not taken).
     if (!update.stress.allFinite() || !update.tangent.allFinite() ||
         !std::all_of(end.begin(), end.end(), [](double x) { return std::isfinite(x); })) {
-      if (!update.tangent.allFinite()) std::fill(ddsdde, ddsdde + n * n, 0.0);
+      std::fill(ddsdde, ddsdde + n * n, 0.0);
       report("update failed: its stress, tangent or state is not finite", noel, npt, pnewdt);
       return;
     }

@@ -229,8 +229,11 @@ template std::vector<WallRecord> read_dataset(hid_t, const std::string&, hid_t, 
 
 namespace {
 
-// The file descriptor under a file of HDF5's default (sec2) driver, or -1.
+// The file descriptor under a file of HDF5's default (sec2) driver, or -1 under another driver
+// (whose handle is not a descriptor).
 int file_descriptor(hid_t file) {
+  const Handle access(H5Fget_access_plist(file));
+  if (!access.valid() || H5Pget_driver(access.get()) != H5FD_SEC2) return -1;
   void* handle = nullptr;
   if (H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) < 0 || handle == nullptr) return -1;
   return *static_cast<int*>(handle);

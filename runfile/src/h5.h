@@ -85,7 +85,9 @@ inline constexpr std::size_t kExtendibleChunkRows = 1024;
 /// Allocates `bytes` of disk from the file's end of allocation (posix_fallocate), so that the
 /// writes and the flush that follow cannot meet a full disk halfway, which leaves a file HDF5
 /// cannot open. Throws std::runtime_error ("no room on the disk ...") where the disk or the
-/// quota has not that much; a file system that cannot allocate ahead is left as it is.
+/// quota has not that much. Where the file system has no fallocate, glibc writes a byte per block
+/// instead (slower, as sure); a copy-on-write file system (ZFS, btrfs) may still fail a later
+/// overwrite; a driver other than HDF5's default is left as it is.
 void reserve_space(hid_t file, std::uint64_t bytes);
 /// Gives back what reserve_space allocated beyond the end of allocation (after a flush).
 void release_space(hid_t file);

@@ -1,8 +1,5 @@
 #include "runfile/run_file.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -15,6 +12,7 @@
 #include "h5.h"
 #include "snapshot_check.h"
 #include "runfile/stored_physics.h"
+#include "sffcal/unique_name.h"
 
 namespace runfile {
 namespace {
@@ -23,22 +21,6 @@ constexpr const char* kUnits = "SI: m, kg, s, N, Pa; angles in rad";
 constexpr const char* kSignConvention =
     "contact normal from body A to body B; forces act on B; normal_force > 0 in compression; "
     "stresses and strains compression positive";
-
-// `stem`-0, -1, ...: the first name that no file holds, created empty (O_EXCL).
-std::string claim_unique_name(const std::string& stem) {
-  for (int k = 0; k < 1000; ++k) {
-    const std::string name = stem + "-" + std::to_string(k);
-    const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0666);
-    if (fd >= 0) {
-      ::close(fd);
-      return name;
-    }
-    if (errno != EEXIST)
-      throw std::runtime_error("HDF5: cannot create the file " + name + " (" +
-                               std::strerror(errno) + ")");
-  }
-  throw std::runtime_error("HDF5: cannot create the file: 1000 files " + stem + "-N exist");
-}
 
 std::string snapshot_name(int index) {
   char name[32];
@@ -187,7 +169,7 @@ RunFile RunFile::create(const std::string& path, const RunMetadata& metadata,
   // Made under a temporary name and renamed once whole and flushed: a run killed while the
   // file is being made leaves no half-made file under the name (only PATH.partial-PID-N). The
   // name is claimed with O_EXCL, so that no file of anyone else's is ever truncated.
-  const std::string partial = claim_unique_name(path + ".partial-" + std::to_string(::getpid()));
+  const std::string partial = sffcal::claim_unique_name(path + ".partial");
   try {
     impl->guard("create", [&] {
       const h5::Handle creation = h5::crash_safe_creation_properties();

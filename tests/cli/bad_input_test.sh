@@ -150,7 +150,7 @@ EOF
            negative_width:"'width0_x' = -0.001" series_ahead:"series_length 1000000000" \
            snapshots_ahead:"num_snapshots -1" series_behind:"its next row is due at" \
            snapshots_behind:"it keeps no snapshot" nan_axial_stress:"'axial_stress' is not finite" \
-           nan_servo:"servo state of wall 0 is not finite" spinning:"more than half the contact" \
+           nan_servo:"servo state of wall 0 is not finite" spinning:"more than its radius" \
            two_values:"holds 2 values where one is expected"; do
     name=${c%%:*}
     cp run.h5 "$name.h5"

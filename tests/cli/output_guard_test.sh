@@ -38,10 +38,18 @@ expect_failure "config -o onto an existing file is refused" "pass --force" \
 expect_unchanged my.toml edited.toml "the existing file is left as it was"
 "$sffcal" config -o my.toml --force > /dev/null && expect_unchanged my.toml original.toml \
   "config -o --force overwrites it"
-# A device is never replaced, even with --force (a failed write is tested on a full disk:
-# full_disk_test.sh).
+# A device is never replaced, even with --force.
 expect_failure "an output that is a device (/dev/full) is refused" "is not a regular file" \
   "$sffcal" config -o /dev/full --force
+# A failed write, without root (full_disk_test.sh mounts a full disk): under a 1 kB file-size
+# limit, with SIGXFSZ ignored, writing the config fails with EFBIG and nothing is left behind.
+expect_failure "a failed write (a file-size limit) is an error naming the file" \
+  "writing limited.toml failed" bash -c "ulimit -f 1; trap '' XFSZ; exec \"\$0\" config -o limited.toml" "$sffcal"
+if [ ! -e limited.toml ] && [ -z "$(ls limited.toml.partial-* 2> /dev/null)" ]; then
+  echo "ok   ... and leaves no file, whole or partial"
+else
+  echo "FAIL a failed write left a file"; failures=$((failures + 1))
+fi
 
 expect_failure "prepare with the output equal to the config is refused" "is also an input" \
   "$sffcal" prepare -c my.toml -o my.toml

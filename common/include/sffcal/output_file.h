@@ -1,13 +1,13 @@
 // A text output written whole or not at all, the one way the commands write their text files
 // (CSV tables, VTK and ParaView files, parameter JSON, Markdown summaries): the text goes to a
-// temporary file of a unique name beside PATH, which takes PATH's place only once every byte is
-// on the disk. A failed write (a full disk, /dev/full) throws naming PATH and removes the
-// temporary file, so PATH is what it was before, never empty or cut short.
+// temporary file of a unique name beside PATH (sffcal/unique_name.h), which takes PATH's place
+// (rename) only once every byte has been written. A failed write (a full disk, a file-size
+// limit) throws naming PATH and removes the temporary file, so PATH is what it was before, never
+// empty or cut short. PATH is then a new regular file: a symbolic link there is replaced, not
+// followed, and the old file's permissions are not kept; PATH may not be a device or a FIFO.
 #pragma once
 
-#include <fcntl.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "sffcal/unique_name.h"
 
 namespace sffcal {
 
@@ -27,18 +29,7 @@ class OutputFile {
     struct stat status {};
     if (::stat(path_.c_str(), &status) == 0 && !S_ISREG(status.st_mode))
       throw std::runtime_error("cannot write " + path_ + ": it exists and is not a regular file");
-    // O_EXCL: a name no other writer (another process, a user's own file) holds.
-    for (int attempt = 0; temporary_.empty(); ++attempt) {
-      const std::string name =
-          path_ + ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(attempt);
-      const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0666);
-      if (fd >= 0) {
-        ::close(fd);
-        temporary_ = name;
-      } else if (errno != EEXIST || attempt > 1000) {
-        throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno));
-      }
-    }
+    temporary_ = claim_unique_name(path_ + ".partial");
     out_.open(temporary_, std::ios::binary | std::ios::trunc);
     if (!out_) {
       std::remove(temporary_.c_str());

@@ -11,9 +11,10 @@
 
 namespace sffcal {
 
-/// Writes `path` listing `files` (names relative to the .pvd's folder) at `times`; the comment
-/// `time_meaning` says what the timestep values are, through an OutputFile. Throws
-/// std::runtime_error naming the path when it cannot be written, std::invalid_argument for unequal lists.
+/// Writes `path` (through an OutputFile) listing `files` (names relative to the .pvd's folder) at
+/// `times`; the comment `time_meaning` says what the timestep values are. Throws
+/// std::runtime_error naming the path when it cannot be written, std::invalid_argument for
+/// unequal lists.
 inline void write_pvd(const std::string& path, const std::vector<std::string>& files,
                       const std::vector<double>& times, const std::string& time_meaning) {
   if (files.size() != times.size())

@@ -165,7 +165,7 @@ class Simulation {
   /// the time step from it; refuses an explicit time step above it (invalid_argument before the
   /// run, runtime_error while `running`).
   void set_time_step(const ContactList& list, bool running);
-  /// Refuses a restored state whose servo is not finite or whose bodies move too far in a step.
+  /// Refuses a state from outside whose servo is not finite or whose bodies move too far in a step.
   void check_restored_motion() const;
   /// Throws the "unstable run" error for an overlap beyond the limit, naming `what` overlaps
   /// (two bodies, or a body and a wall) and the stress on the walls.

@@ -12,11 +12,11 @@ namespace model {
 inline constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
-/// Where a parameter is physical: low < x < high, with <= at a closed end.
 /// A number as the parameter messages write it (%g: 1e-08, not to_string's 0.000000;
 /// sffcal/format_number.h, for the installed interface).
 std::string format_number(double x);
 
+/// Where a parameter is physical: low < x < high, with <= at a closed end.
 struct ParameterRange {
   double low, high;
   bool low_closed, high_closed;
