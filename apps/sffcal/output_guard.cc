@@ -88,30 +88,28 @@ void check_new_run_file(const std::string& path, const std::vector<std::string>&
 RunFileTarget::RunFileTarget(std::string path, bool with_series)
     : path_(std::move(path)), with_series_(with_series) {
   std::error_code error;
-  if (!fs::exists(path_, error)) {
-    working_ = path_;
-    return;
-  }
-  working_ = claim_unique_name(path_ + kReplacing);
+  replaces_ = fs::exists(path_, error);
 }
 
 void RunFileTarget::make(const std::function<void(const std::string&)>& write) const {
+  // Claimed only now, when the work begins: a command refused before leaves no name behind.
+  const std::string working = replaces_ ? claim_unique_name(path_ + kReplacing) : path_;
   try {
-    write(working_);
+    write(working);
   } catch (const std::exception& e) {
-    if (!replaces()) throw;
+    if (!replaces_) throw;
     std::error_code error;
-    if (fs::is_empty(working_, error)) {  // claimed, and no run file made there
-      fs::remove(working_, error);
+    if (fs::is_empty(working, error)) {  // claimed, and no run file made there
+      fs::remove(working, error);
       throw std::runtime_error(std::string(e.what()) + "\n  (the existing '" + path_ +
                                "' is kept as it was)");
     }
     throw std::runtime_error(std::string(e.what()) + "\n  (the existing '" + path_ +
-                             "' is kept as it was; this run's file is '" + working_ + "')");
+                             "' is kept as it was; this run's file is '" + working + "')");
   }
-  if (!replaces()) return;
-  std::vector<std::pair<std::string, std::string>> moves = {{working_, path_}};
-  if (with_series_) moves.emplace_back(working_ + ".series.csv", path_ + ".series.csv");
+  if (!replaces_) return;
+  std::vector<std::pair<std::string, std::string>> moves = {{working, path_}};
+  if (with_series_) moves.emplace_back(working + ".series.csv", path_ + ".series.csv");
   for (const auto& [from, to] : moves) {
     std::error_code error;
     fs::rename(from, to, error);
@@ -119,7 +117,7 @@ void RunFileTarget::make(const std::function<void(const std::string&)>& write) c
       throw std::runtime_error("the new run is complete in '" + from + "' but could not replace '" +
                                to + "': " + error.message());
   }
-  std::printf("moved %s over the earlier %s%s\n", working_.c_str(), path_.c_str(),
+  std::printf("moved %s over the earlier %s%s\n", working.c_str(), path_.c_str(),
               with_series_ ? " (and its series CSV)" : "");
 }
 

@@ -37,8 +37,8 @@ class RunFileTarget {
   void make(const std::function<void(const std::string&)>& write) const;
 
  private:
-  bool replaces() const { return working_ != path_; }
-  std::string path_, working_;
+  std::string path_;
+  bool replaces_;  ///< PATH existed when the target was made
   bool with_series_;
 };
 
