@@ -4,7 +4,7 @@
 # cannot load a user material at run time, and its material "ABAQUS..." runs that example (linear
 # elasticity with E = PROPS(1)) without a word; this ccx calls libsffcal_umat_calculix.so instead
 # (the UMAT without DROT: CalculiX gives a user material its stress and strain in the material's
-# own axes, model/src/umat_calculix.cc).
+# own axes, model/src/umat_fortran.cc).
 #
 # Usage: scripts/build_calculix.sh [BUILD]   (BUILD: the project's build folder, default build; its
 #        model/libsffcal_umat_calculix.so must exist: scripts/build.sh first)

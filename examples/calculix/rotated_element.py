@@ -24,6 +24,8 @@ import re
 import subprocess
 import sys
 
+import ccx_case
+
 NODES = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
 
 
@@ -122,10 +124,7 @@ def read_stresses(path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--ccx", required=True, help="ccx with sffcal's UMAT (build_calculix.sh)")
-    parser.add_argument("--sffcal", required=True)
-    parser.add_argument("--parameters", required=True, help="parameter file of any registered model")
-    parser.add_argument("--dem", help="start from this DEM run (else a plain specimen)")
+    ccx_case.add_common_arguments(parser)
     parser.add_argument("--angle", type=float, default=45.0, help="end rotation about x [degrees]")
     parser.add_argument("--strain", type=float, default=0.02,
                         help="compression along the element's own z axis after the turn")
@@ -134,17 +133,10 @@ def main():
                         help="largest |sigma_B - R sigma_A R^T| / |sigma_A| accepted")
     parser.add_argument("--nl", action="store_true",
                         help="name the material ABAQUSNL...: ccx's umat_abaqusnl interface")
-    parser.add_argument("-o", "--output", required=True, help="folder (created; must be new)")
     args = parser.parse_args()
-    if os.path.exists(args.output):
-        sys.exit(f"rotated_element: {args.output} exists; give a new folder")
-    os.makedirs(args.output)
-    out = os.path.abspath(args.output)
-    start = ["--dem", args.dem] if args.dem else []
-    cards = subprocess.run([os.path.abspath(args.sffcal), "umat-cards", "--parameters",
-                            args.parameters, *start, "--elements", "1"],
-                           check=True, capture_output=True, text=True).stdout
-    material = re.search(r"\*MATERIAL, NAME=(\S+)", cards).group(1)
+    ccx_case.new_folder(args.output, "rotated_element")
+    cards, material = ccx_case.umat_cards(os.path.abspath(args.sffcal), args.parameters,
+                                          ["--dem", args.dem] if args.dem else [])
     if args.nl:  # ccx's umat_abaqusnl: Cauchy stress and logarithmic strain, and a real DROT
         cards = cards.replace(f"NAME={material}", f"NAME=ABAQUSNL{material[len('ABAQUS'):]}")
         material = f"ABAQUSNL{material[len('ABAQUS'):]}"

@@ -20,6 +20,8 @@ import re
 import subprocess
 import sys
 
+import ccx_case
+
 # No *HEADING: CalculiX 2.20 reads it with an uninitialised count (headings.f) and may crash.
 DECK = """** sffcal: one C3D8 element, drained triaxial {kind}
 *NODE, NSET=NALL
@@ -126,10 +128,7 @@ def read_curve(path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--ccx", required=True, help="ccx with sffcal's UMAT (build_calculix.sh)")
-    parser.add_argument("--sffcal", required=True)
-    parser.add_argument("--parameters", required=True, help="parameter file of any registered model")
-    parser.add_argument("--dem", help="start from this DEM run (else a plain specimen)")
+    ccx_case.add_common_arguments(parser)
     parser.add_argument("--pressure", type=float, default=100e3, help="plain specimen sigma_3 [Pa]")
     parser.add_argument("--void-ratio", type=float, default=0.8, help="plain specimen e_0")
     parser.add_argument("--max-strain", type=float, default=0.05, help="end axial strain")
@@ -142,22 +141,16 @@ def main():
                         help="ccx's automatic incrementation from one increment to the end strain "
                              "(the UMAT asks for smaller ones through PNEWDT): the end point is "
                              "compared, with --tolerance, and the cuts counted")
-    parser.add_argument("-o", "--output", required=True, help="folder (created; must be new)")
     args = parser.parse_args()
     args.ccx, args.sffcal = os.path.abspath(args.ccx), os.path.abspath(args.sffcal)
     if not args.max_strain > 0:
         sys.exit("single_element: --max-strain must be positive (fe-check, the reference, drives "
                  "drained compression only)")
-    if os.path.exists(args.output):
-        sys.exit(f"single_element: {args.output} exists; give a new folder")
-    os.makedirs(args.output)
-    out = os.path.abspath(args.output)
+    out = ccx_case.new_folder(args.output, "single_element")
 
     start = ["--dem", args.dem] if args.dem else ["--pressure", repr(args.pressure),
                                                    "--void-ratio", repr(args.void_ratio)]
-    cards = subprocess.run([args.sffcal, "umat-cards", "--parameters", args.parameters, *start,
-                            "--elements", "1"], check=True, capture_output=True, text=True).stdout
-    material = re.search(r"\*MATERIAL, NAME=(\S+)", cards).group(1)
+    cards, material = ccx_case.umat_cards(args.sffcal, args.parameters, start)
     sigma3 = -float(re.search(r"\n1, 1, (\S+),", cards).group(1))
     with open(os.path.join(out, "element.inp"), "w") as f:
         f.write(DECK.format(kind="compression" if args.max_strain > 0 else "extension",

@@ -66,7 +66,7 @@ void report(const std::string& message, const int* noel, const int* npt, double*
 
 /// The UMAT under the name Abaqus/Standard calls (the Fortran convention, CMNAME's length last):
 /// the model CMNAME chooses (umat_model) through umat_body. Defined by the shared libraries'
-/// sources (umat_fortran.cc; umat_calculix.cc for CalculiX), never by the model library.
+/// source umat_fortran.cc (built once for Abaqus, once for CalculiX), never by the model library.
 extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* sse, double* spd,
                       double* scd, double* rpl, double* ddsddt, double* drplde, double* drpldt,
                       const double* stran, const double* dstran, const double* time,
