@@ -227,10 +227,6 @@ template std::vector<ParticleRecord> read_dataset(hid_t, const std::string&, hid
 template std::vector<ContactRecord> read_dataset(hid_t, const std::string&, hid_t, std::size_t*);
 template std::vector<WallRecord> read_dataset(hid_t, const std::string&, hid_t, std::size_t*);
 
-namespace {
-
-// The file descriptor under a file of HDF5's default (sec2) driver, or -1 under another driver
-// (whose handle is not a descriptor).
 int file_descriptor(hid_t file) {
   const Handle access(H5Fget_access_plist(file));
   if (!access.valid() || H5Pget_driver(access.get()) != H5FD_SEC2) return -1;
@@ -239,11 +235,8 @@ int file_descriptor(hid_t file) {
   return *static_cast<int*>(handle);
 }
 
-}  // namespace
-
-void reserve_space(hid_t file, std::uint64_t bytes) {
+void reserve_space(hid_t file, int fd, std::uint64_t bytes) {
   haddr_t end = 0;
-  const int fd = file_descriptor(file);
   if (fd < 0 || H5Fget_eoa(file, &end) < 0) return;
   const int error = posix_fallocate(fd, static_cast<off_t>(end), static_cast<off_t>(bytes));
   if (error == ENOSPC || error == EDQUOT || error == EFBIG)
@@ -251,10 +244,9 @@ void reserve_space(hid_t file, std::uint64_t bytes) {
                              " bytes (" + std::strerror(error) + ")");
 }
 
-void release_space(hid_t file) {
+void release_space(hid_t file, int fd) {
   haddr_t end = 0;
   struct stat status {};
-  const int fd = file_descriptor(file);
   if (fd < 0 || H5Fget_eoa(file, &end) < 0 || fstat(fd, &status) != 0) return;
   if (static_cast<haddr_t>(status.st_size) > end)
     (void)!ftruncate(fd, static_cast<off_t>(end));

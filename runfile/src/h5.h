@@ -82,15 +82,20 @@ std::vector<T> read_dataset(hid_t location, const std::string& name, hid_t type,
 /// Rows of an extendible dataset's chunk: an append that starts a chunk allocates this many.
 inline constexpr std::size_t kExtendibleChunkRows = 1024;
 
-/// Allocates `bytes` of disk from the file's end of allocation (posix_fallocate), so that the
+/// The file descriptor under a file of HDF5's default (sec2) driver, or -1 under another driver
+/// (whose handle is not a descriptor). Looked up once per file: it copies the access properties.
+int file_descriptor(hid_t file);
+
+/// Allocates `bytes` of disk from the file's end of allocation (posix_fallocate on its descriptor
+/// `fd`; nothing where fd < 0), so that the
 /// writes and the flush that follow cannot meet a full disk halfway, which leaves a file HDF5
 /// cannot open. Throws std::runtime_error ("no room on the disk ...") where the disk or the
 /// quota has not that much. Where the file system has no fallocate, glibc writes a byte per block
 /// instead (slower, as sure); a copy-on-write file system (ZFS, btrfs) may still fail a later
 /// overwrite; a driver other than HDF5's default is left as it is.
-void reserve_space(hid_t file, std::uint64_t bytes);
+void reserve_space(hid_t file, int fd, std::uint64_t bytes);
 /// Gives back what reserve_space allocated beyond the end of allocation (after a flush).
-void release_space(hid_t file);
+void release_space(hid_t file, int fd);
 
 /// An extendible 1-D dataset of doubles (unlimited length, chunked, not compressed: a compressed
 /// chunk moves in the file each time it grows, and a kill between the move and the next flush
