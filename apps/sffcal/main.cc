@@ -134,6 +134,19 @@ int main(int argc, char** argv) {
   fe_check->add_flag("--no-mesh", fe_check_no_mesh, "skip the 2x2x4 mesh (the slow run)");
   fe_check->add_flag("-v,--verbose", fe_check_options.verbose, "print the Newton logs");
 
+  // The start of umat-cards and point (fe_model/model_start.h): a DEM run's, or a plain specimen's.
+  const auto add_start_options = [](CLI::App& command, fe_model::StartOptions& start) {
+    command.add_option("--dem", start.dem_run,
+                       "start from this DEM run (sigma_3, e_0 and the model's initial state, as "
+                       "fe-check takes them); without it, a plain specimen")
+        ->check(CLI::ExistingFile);
+    command.add_option("--pressure", start.confining_pressure, "plain specimen: sigma_3 [Pa]")
+        ->capture_default_str();
+    command.add_option("--void-ratio", start.void_ratio, "plain specimen: e_0")
+        ->capture_default_str();
+    command.add_option("--a-cs", start.a_cs,
+                       "ACST: DEM fabric normalisation (default: the parameter file's, else 0.827)");
+  };
   fe_model::UmatCardOptions cards_options;
   std::string cards_elements;
   CLI::App* cards = app.add_subcommand(
@@ -145,17 +158,7 @@ int main(int argc, char** argv) {
                     "parameter file of any registered model")
       ->required()
       ->check(CLI::ExistingFile);
-  cards->add_option("--dem", cards_options.dem_run,
-                    "start from this DEM run (sigma_3, e_0 and the model's initial state, as "
-                    "fe-check takes them); without it, a plain specimen")
-      ->check(CLI::ExistingFile);
-  cards->add_option("--pressure", cards_options.confining_pressure,
-                    "plain specimen: sigma_3 [Pa]")
-      ->capture_default_str();
-  cards->add_option("--void-ratio", cards_options.void_ratio, "plain specimen: e_0")
-      ->capture_default_str();
-  cards->add_option("--a-cs", cards_options.a_cs,
-                    "ACST: DEM fabric normalisation (default: the parameter file's, else 0.827)");
+  add_start_options(*cards, cards_options.start);
   cards->add_option("--elements", cards_elements,
                     "elements whose integration points get the initial stress, e.g. 1-27 "
                     "(none: no *INITIAL CONDITIONS card)");
@@ -167,6 +170,30 @@ int main(int argc, char** argv) {
                     "the name) or abaqus")
       ->check(CLI::IsMember({"calculix", "abaqus"}))
       ->capture_default_str();
+
+  fe_model::PointPathOptions point_options;
+  std::string point_drainage = "drained";
+  CLI::App* point = app.add_subcommand(
+      "point", "Drive one material point of any registered model along a triaxial path, drained or "
+               "undrained, in compression or extension, from a DEM run's start or a plain "
+               "specimen; write its curve as a CSV (docs/fe.md, \"One material point\")");
+  point->add_option("--parameters", point_options.parameters_path,
+                    "parameter file of any registered model")
+      ->required()
+      ->check(CLI::ExistingFile);
+  add_start_options(*point, point_options.start);
+  point->add_option("--drainage", point_drainage,
+                    "drained (sigma_3 held) or undrained (constant volume)")
+      ->check(CLI::IsMember({"drained", "undrained"}))
+      ->capture_default_str();
+  point->add_option("--max-strain", point_options.axial_strain_end,
+                    "end axial strain (negative: extension)")
+      ->capture_default_str();
+  point->add_option("--steps", point_options.steps, "equal axial strain increments")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  point->add_option("-o,--output", out_path, "CSV file to write")->required();
+  point->add_flag("--force", force, force_help);
 #endif
 
 #ifdef SFFCAL_HAVE_CALIBRATE
@@ -246,6 +273,13 @@ int main(int argc, char** argv) {
       inputs.push_back(fe_check_options.parameters_path);
       sffcal::check_inputs_outside(fe_check_options.output_folder, inputs);
       return sffcal::fe_check_command(fe_check_options);
+    }
+    if (point->parsed()) {
+      std::vector<std::string> inputs = {point_options.parameters_path};
+      if (!point_options.start.dem_run.empty()) inputs.push_back(point_options.start.dem_run);
+      sffcal::check_new_output_file(out_path, inputs, force);
+      point_options.drainage = model::parse_drainage(point_drainage);
+      return sffcal::point_command(point_options, out_path);
     }
     if (cards->parsed()) {
       if (!cards_elements.empty())

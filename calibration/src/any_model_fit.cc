@@ -115,12 +115,12 @@ AnyModelCurve any_model_curve(const model::ModelDescription& description,
   check_any_model_test(test);
   const std::unique_ptr<model::Behaviour> behaviour =
       description.make(values.constants, values.parameters);
-  model::DrainedTriaxialPath path;
+  model::TriaxialPath path;
   path.lateral_stress = test.p0;
   path.axial_strain_end = test.axial_strain.back();
   path.steps = driver_steps;
   const model::DriverPath driven =
-      model::drive_drained_triaxial(*behaviour, initial_inputs(description, test), path);
+      model::drive_triaxial(*behaviour, initial_inputs(description, test), path);
   AnyModelCurve curve;
   curve.message = driven.message;
   curve.axial_strain = test.axial_strain;

@@ -392,11 +392,11 @@ Check network_check(const FeCheckOptions& options, const model::ParameterValues&
 Curve drive_point(const model::Behaviour& behaviour, const std::vector<double>& inputs,
                   double confining_pressure, const FeCheckOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  model::DrainedTriaxialPath path;
+  model::TriaxialPath path;
   path.lateral_stress = confining_pressure;
   path.axial_strain_end = options.max_strain;
   path.steps = static_cast<int>(options.steps);
-  const model::DriverPath point = model::drive_drained_triaxial(behaviour, inputs, path);
+  const model::DriverPath point = model::drive_triaxial(behaviour, inputs, path);
   const int void_ratio = model::slot_offset(behaviour.description().state(), "void_ratio");
   Curve driver;
   driver.label = "driver";

@@ -1,7 +1,9 @@
 // A specimen's start as a model's initial inputs (model_start.h).
 #include "fe_model/model_start.h"
 
+#include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -92,6 +94,30 @@ ModelStart plain_start(const model::ParameterValues& values, double confining_pr
   start.void_ratio = void_ratio;
   start.inputs = isotropic_inputs(model::find_model(values.model), void_ratio);
   start.source = "isotropic";
+  return start;
+}
+
+ModelStart specimen_start(const model::ParameterValues& values, const std::string& parameters_path,
+                          const StartOptions& options) {
+  ModelStart start;
+  if (options.dem_run.empty()) {
+    if (!(options.confining_pressure > 0.0) || !std::isfinite(options.confining_pressure))
+      throw std::invalid_argument("--pressure must be positive [Pa]");
+    start = plain_start(values, options.confining_pressure, options.void_ratio);
+  } else {
+    const double a_cs = values.model == "acst"
+                            ? acst_fabric_normalisation(values, parameters_path, options.a_cs).first
+                            : 0.0;
+    start = dem_start(values, a_cs, runfile::read_dem_test(options.dem_run), options.dem_run);
+  }
+  if (!(start.confining_pressure > 0.0) || !std::isfinite(start.confining_pressure))
+    throw std::invalid_argument("the start's sigma_3 " + format_value(start.confining_pressure) +
+                                " Pa is not a positive number");
+  const model::ModelDescription& d = model::find_model(values.model);
+  const std::unique_ptr<model::Behaviour> behaviour = d.make(values.constants, values.parameters);
+  std::vector<double> state(static_cast<std::size_t>(model::slot_components(d.state())));
+  behaviour->initial_state(start.confining_pressure * Eigen::Matrix3d::Identity(),
+                           start.inputs.data(), state.data());
   return start;
 }
 

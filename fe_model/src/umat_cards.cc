@@ -1,11 +1,7 @@
 // The input-deck cards of a model's UMAT (umat_cards.h).
 #include "fe_model/umat_cards.h"
 
-#include <Eigen/Core>
-
-#include <cmath>
 #include <cstdio>
-#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -14,7 +10,6 @@
 #include "fe_model/model_start.h"
 #include "model/descriptor.h"
 #include "model/parameter_file.h"
-#include "runfile/dem_test.h"
 
 namespace fe_model {
 namespace {
@@ -37,29 +32,7 @@ std::string umat_cards(const UmatCardOptions& options) {
     if (e < 1) throw std::invalid_argument("--elements: element numbers start at 1");
   const model::ParameterValues values = model::read_parameter_file(options.parameters_path);
   const model::ModelDescription& d = model::find_model(values.model);
-  ModelStart start;
-  if (options.dem_run.empty()) {
-    if (!(options.confining_pressure > 0.0))
-      throw std::invalid_argument("--pressure must be positive [Pa]");
-    start = plain_start(values, options.confining_pressure, options.void_ratio);
-  } else {
-    const double a_cs =
-        values.model == "acst"
-            ? acst_fabric_normalisation(values, options.parameters_path, options.a_cs).first
-            : 0.0;
-    start = dem_start(values, a_cs, runfile::read_dem_test(options.dem_run), options.dem_run);
-  }
-  // The start as the UMAT will take it: the model's own initial state refuses an input it cannot
-  // carry (a void ratio of 5, a coordination of 0), naming it, before the cards are printed.
-  if (!(start.confining_pressure > 0.0) || !std::isfinite(start.confining_pressure))
-    throw std::invalid_argument("the start's sigma_3 " + exact(start.confining_pressure) +
-                                " Pa is not a positive number");
-  {
-    const std::unique_ptr<model::Behaviour> behaviour = d.make(values.constants, values.parameters);
-    std::vector<double> state(static_cast<std::size_t>(model::slot_components(d.state())));
-    behaviour->initial_state(start.confining_pressure * Eigen::Matrix3d::Identity(),
-                             start.inputs.data(), state.data());
-  }
+  const ModelStart start = specimen_start(values, options.parameters_path, options.start);
   const std::vector<double> props =
       model::umat_props(d, start.inputs, values.constants, values.parameters);
   const std::vector<std::string> names = model::umat_props_names(d);
@@ -68,8 +41,8 @@ std::string umat_cards(const UmatCardOptions& options) {
   std::ostringstream out;
   out << "** sffcal umat-cards: the " << d.name() << " model, parameters "
       << options.parameters_path << "\n** start: "
-      << (options.dem_run.empty() ? "a plain specimen" : options.dem_run) << ", sigma_3 = "
-      << exact(start.confining_pressure) << " Pa, inputs " << start.source
+      << (options.start.dem_run.empty() ? "a plain specimen" : options.start.dem_run)
+      << ", sigma_3 = " << exact(start.confining_pressure) << " Pa, inputs " << start.source
       << "\n** PROPS (compression positive, SI):";
   for (std::size_t i = 0; i < names.size(); ++i)
     out << (i % 4 == 0 ? "\n**  " : "  ") << i + 1 << " " << names[i];

@@ -1,4 +1,5 @@
-// Drained triaxial compression of one point of any model (point_driver.h).
+// Triaxial compression and extension of one point of any model, drained or undrained
+// (point_driver.h).
 #include "model/point_driver.h"
 
 #include <Eigen/LU>
@@ -10,18 +11,28 @@
 
 namespace model {
 
-DriverPath drive_drained_triaxial(const Behaviour& behaviour, const std::vector<double>& inputs,
-                                  const DrainedTriaxialPath& path) {
-  if (path.steps < 1) throw std::invalid_argument("drained triaxial path: steps must be >= 1");
+const char* to_string(Drainage drainage) {
+  return drainage == Drainage::kDrained ? "drained" : "undrained";
+}
+
+Drainage parse_drainage(const std::string& text) {
+  if (text == "drained") return Drainage::kDrained;
+  if (text == "undrained") return Drainage::kUndrained;
+  throw std::invalid_argument("drainage '" + text + "': drained or undrained");
+}
+
+DriverPath drive_triaxial(const Behaviour& behaviour, const std::vector<double>& inputs,
+                          const TriaxialPath& path) {
+  if (path.steps < 1) throw std::invalid_argument("triaxial path: steps must be >= 1");
   if (!(path.lateral_stress > 0.0) || !std::isfinite(path.lateral_stress))
-    throw std::invalid_argument("drained triaxial path: the lateral stress must be positive [Pa]");
+    throw std::invalid_argument("triaxial path: the lateral stress must be positive [Pa]");
   if (!std::isfinite(path.axial_strain_end))
-    throw std::invalid_argument("drained triaxial path: the end axial strain must be finite");
+    throw std::invalid_argument("triaxial path: the end axial strain must be finite");
   if (!(path.stress_tolerance > 0.0))
-    throw std::invalid_argument("drained triaxial path: the stress tolerance must be positive");
+    throw std::invalid_argument("triaxial path: the stress tolerance must be positive");
   const ModelDescription& description = behaviour.description();
   if (static_cast<int>(inputs.size()) != slot_components(description.initial_inputs()))
-    throw std::invalid_argument("drained triaxial path: " + std::to_string(inputs.size()) +
+    throw std::invalid_argument("triaxial path: " + std::to_string(inputs.size()) +
                                 " initial inputs given, model '" + description.name() +
                                 "' takes " +
                                 std::to_string(slot_components(description.initial_inputs())));
@@ -35,7 +46,11 @@ DriverPath drive_drained_triaxial(const Behaviour& behaviour, const std::vector<
   result.points.push_back(point);
 
   const double d_axial = path.axial_strain_end / path.steps;
-  Eigen::Vector2d lateral = Eigen::Vector2d::Zero();  // the last increment's, the next's guess
+  const bool drained = path.drainage == Drainage::kDrained;
+  // Drained: the last increment's lateral strains, the next's guess; undrained: the prescribed
+  // ones, tr = 0.
+  Eigen::Vector2d lateral =
+      drained ? Eigen::Vector2d::Zero() : Eigen::Vector2d::Constant(-0.5 * d_axial).eval();
   std::vector<double> end_state(point.state.size());
   for (int step = 1; step <= path.steps; ++step) {
     const DriverPoint& start = result.points.back();
@@ -49,6 +64,10 @@ DriverPath drive_drained_triaxial(const Behaviour& behaviour, const std::vector<
       increment(1, 1) = lateral(1);
       update = behaviour.update(start.stress, start.state.data(), increment, end_state.data());
       if (update.status == UpdateStatus::kFailed) break;
+      if (!drained) {
+        converged = true;
+        break;
+      }
       const Eigen::Vector2d residual(update.stress(0, 0) - sigma_3, update.stress(1, 1) - sigma_3);
       const double scale = std::max(update.stress.trace() / 3.0, sigma_3);
       if (residual.lpNorm<Eigen::Infinity>() <= path.stress_tolerance * scale) {

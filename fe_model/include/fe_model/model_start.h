@@ -1,5 +1,6 @@
 // A specimen's start as a model's initial inputs (model/descriptor.h, ModelDescription::
-// initial_inputs): from a DEM run, as fe-check and the UMAT cards take it, or a plain specimen.
+// initial_inputs): from a DEM run, as fe-check, the UMAT cards and `sffcal point` take it, or a
+// plain specimen.
 // deal.II-free (fe_model_acst), like fe_check.h.
 #ifndef FE_MODEL_MODEL_START_H_
 #define FE_MODEL_MODEL_START_H_
@@ -44,6 +45,22 @@ ModelStart dem_start(const model::ParameterValues& values, double a_cs,
 /// (Z, Lambda, anisotropies) comes from a DEM run.
 ModelStart plain_start(const model::ParameterValues& values, double confining_pressure,
                        double void_ratio);
+
+/// Where the start of umat-cards and `sffcal point` comes from (their --dem, --pressure,
+/// --void-ratio, --a-cs).
+struct StartOptions {
+  std::string dem_run;                ///< the start of this DEM run; empty: a plain specimen
+  double confining_pressure = 100e3;  ///< plain specimen: sigma_3 [Pa]
+  double void_ratio = 0.8;            ///< plain specimen: e_0
+  double a_cs = 0.0;  ///< ACST's DEM fabric normalisation; 0: the parameter file's, else the default
+};
+
+/// The start of `options` for the model of `values` (read from `parameters_path`), checked as the
+/// model will take it: its initial_state refuses an input it cannot carry (a void ratio of 5, a
+/// coordination of 0), naming it. Throws std::invalid_argument for a start that is not physical,
+/// std::runtime_error for an unreadable run.
+ModelStart specimen_start(const model::ParameterValues& values, const std::string& parameters_path,
+                          const StartOptions& options);
 
 }  // namespace fe_model
 

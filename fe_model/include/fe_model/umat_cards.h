@@ -8,14 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "fe_model/model_start.h"
+
 namespace fe_model {
 
 struct UmatCardOptions {
   std::string parameters_path;  ///< a parameter file of any registered model
-  std::string dem_run;          ///< the start of this DEM run; empty: a plain specimen
-  double confining_pressure = 100e3;  ///< plain specimen: sigma_3 [Pa]
-  double void_ratio = 0.8;            ///< plain specimen: e_0
-  double a_cs = 0.0;  ///< ACST's DEM fabric normalisation; 0: the parameter file's, else the default
+  StartOptions start;           ///< a DEM run's start, or a plain specimen's
   /// Elements whose integration points get the initial stress (-sigma_3 on the diagonal, tension
   /// positive); empty: no *INITIAL CONDITIONS card.
   std::vector<int> elements;

@@ -1,7 +1,8 @@
-// The material-point driver of any registered model (model/descriptor.h): drained triaxial
-// compression of one point through Behaviour::update alone, the lateral strains found by Newton on
-// the consistent tangent. It is what fe-check runs beside the element for a model that has no
-// driver of its own; ACST (material_point.h) and the contact-network model (network_path.h) keep
+// The material-point driver of any registered model (model/descriptor.h): triaxial compression or
+// extension of one point through Behaviour::update alone, drained (the lateral strains found by
+// Newton on the consistent tangent) or undrained (constant volume, every strain prescribed). It is
+// what fe-check runs beside the element for a model that has no driver of its own, what
+// `sffcal point` runs for any model, and the reference of the CalculiX element decks; ACST (material_point.h) and the contact-network model (network_path.h) keep
 // theirs, which a fit differentiates with respect to the parameters.
 //
 // Conventions: compression positive, stress in Pa, tensor shear components.
@@ -17,13 +18,21 @@
 
 namespace model {
 
-/// Drained triaxial compression along z: sigma_xx = sigma_yy held at lateral_stress, eps_zz to
-/// axial_strain_end in equal increments, no shear strain.
-struct DrainedTriaxialPath {
-  double lateral_stress = 100e3;  ///< sigma_3 [Pa], also the initial isotropic stress
+/// How the lateral directions are held.
+enum class Drainage {
+  kDrained,    ///< sigma_xx = sigma_yy held at the initial sigma_3; eps_xx, eps_yy found by Newton
+  kUndrained,  ///< constant volume: eps_xx = eps_yy = -eps_zz / 2 (small strain), no Newton
+};
+
+/// A triaxial path along z from the isotropic stress sigma_3: eps_zz to axial_strain_end in equal
+/// increments (positive: compression, negative: extension), no shear strain.
+struct TriaxialPath {
+  Drainage drainage = Drainage::kDrained;
+  double lateral_stress = 100e3;  ///< sigma_3 [Pa], the initial isotropic stress
   double axial_strain_end = 0.05;
   int steps = 50;
-  /// Newton converged when both lateral stresses are within this * max(p, sigma_3) of sigma_3.
+  /// Drained: Newton converged when both lateral stresses are within this * max(p, sigma_3) of
+  /// sigma_3.
   double stress_tolerance = 1e-10;
   int max_newton_iterations = 50;
 };
@@ -34,7 +43,7 @@ struct DriverPoint {
   Eigen::Matrix3d stress = Eigen::Matrix3d::Zero();  ///< [Pa]
   std::vector<double> state;                          ///< laid out as the description's state()
   UpdateStatus status = UpdateStatus::kOk;
-  int newton_iterations = 0;
+  int newton_iterations = 0;  ///< drained: of the lateral strains; undrained: 0
 };
 
 struct DriverPath {
@@ -48,7 +57,12 @@ struct DriverPath {
 /// fails or Newton does not converge; throws std::invalid_argument for a path that is not
 /// (steps < 1, a tolerance not positive, a lateral stress not positive or not finite) and what
 /// Behaviour::initial_state throws for inputs that are not physical.
-DriverPath drive_drained_triaxial(const Behaviour& behaviour, const std::vector<double>& inputs,
-                                  const DrainedTriaxialPath& path);
+DriverPath drive_triaxial(const Behaviour& behaviour, const std::vector<double>& inputs,
+                          const TriaxialPath& path);
+
+/// "drained" or "undrained" (the spelling of configs and the command line).
+const char* to_string(Drainage drainage);
+/// The inverse of to_string; throws std::invalid_argument naming `text` otherwise.
+Drainage parse_drainage(const std::string& text);
 
 }  // namespace model
