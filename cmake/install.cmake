@@ -14,6 +14,7 @@ install(FILES
   model/include/model/parameter_file.h
   model/include/model/descriptor.h
   model/include/model/point_driver.h
+  model/include/model/batch_update.h
   model/include/model/acst_model_impl.h
   model/include/model/acst_implicit.h
   model/include/model/umat.h
