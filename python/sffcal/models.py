@@ -14,7 +14,7 @@ try:
     from sffcal._core import Model, model_names, STATUS_NAMES  # noqa: F401
 except ImportError as error:  # the source tree's copy of the package, without the build's module
     raise ImportError("sffcal.models needs the compiled module sffcal._core, which CMake builds "
-                      "into BUILD/python/sffcal: put BUILD/python on PYTHONPATH (docs/python.md)"
-                      ) from error
+                      "into BUILD/python/sffcal: put BUILD/python on PYTHONPATH (docs/python.md); "
+                      f"{error}") from error
 
 __all__ = ["Model", "model_names", "STATUS_NAMES"]

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "force_moments.h"
 #include "sff/invariants.h"
@@ -9,6 +11,7 @@
 #include "sff/statistics.h"
 #include "sff/tensors.h"
 #include "sffcal/constants.h"
+#include "sffcal/format_number.h"
 
 namespace sff {
 
@@ -137,6 +140,73 @@ SnapshotAnalysis analyse_snapshot(const SnapshotInput& in) {
   a.sff_error = (predicted - a.stress).norm() / norm;
   a.branch_ratio = branch_remainder(in.contacts, in.volume).norm() / norm;
   return a;
+}
+
+namespace {
+
+// What is wrong with one contact given as input (check_snapshot_input), empty where nothing is;
+// with `describe` false, any non-empty text (the fast test of the usual, valid contact).
+std::string contact_problem(const ContactRecord& c, int num_bodies, bool describe) {
+  const double values[] = {c.point[0], c.point[1], c.point[2], c.branch[0], c.branch[1],
+                           c.branch[2], c.overlap, c.normal_force, c.tangential_force[0],
+                           c.tangential_force[1], c.tangential_force[2]};
+  // A NaN or an infinity makes the sum non-finite: one test for the usual contact, then each
+  // value (a finite sum past 1e308 is no error).
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  if (!std::isfinite(sum))
+    for (double v : values)
+      if (!std::isfinite(v)) return "a number is not finite";
+  const double length_squared = normal_of(c).squaredNorm();  // |n| within 1e-6 of 1
+  if (!(std::abs(length_squared - 1.0) <= 2e-6))
+    return describe ? "the normal is not a unit vector (length " +
+                          sffcal::format_number(std::sqrt(length_squared)) + ")"
+                    : "normal";
+  if (c.body_b < 0 || c.body_b >= num_bodies)
+    return describe ? "body_b " + std::to_string(c.body_b) + " is not in [0, num_bodies)" : "b";
+  if (c.wall >= 0 && c.body_a != -1) return "a wall contact's body_a must be -1";
+  if (c.wall < 0 && (c.body_a < 0 || c.body_a >= num_bodies || c.body_a == c.body_b))
+    return describe ? "body_a " + std::to_string(c.body_a) +
+                          " is not another body in [0, num_bodies) (or give the wall's index)"
+                    : "a";
+  return {};
+}
+
+}  // namespace
+
+void check_snapshot_input(const SnapshotInput& in) {
+  const auto number = sffcal::format_number;
+  const auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  require(in.volume > 0.0 && std::isfinite(in.volume),
+          "the volume must be positive [m^3], not " + number(in.volume));
+  require(in.solid_volume > 0.0 && in.solid_volume <= in.volume,
+          "the solid volume must be positive and at most the volume [m^3], not " +
+              number(in.solid_volume));
+  require(in.num_bodies > 0, "the number of bodies must be positive");
+  require(in.youngs_modulus > 0.0 && std::isfinite(in.youngs_modulus),
+          "Young's modulus must be positive [Pa], not " + number(in.youngs_modulus));
+  require(in.friction > 0.0 && std::isfinite(in.friction),
+          "the friction coefficient must be positive, not " + number(in.friction));
+  require(in.wall_stress.allFinite(), "the wall stress must be finite");
+  require(in.centroids.empty() || in.centroids.size() == static_cast<std::size_t>(in.num_bodies),
+          "give one centroid per body (" + std::to_string(in.num_bodies) + "), not " +
+              std::to_string(in.centroids.size()));
+  for (const Eigen::Vector3d& x : in.centroids) require(x.allFinite(), "a centroid is not finite");
+  // Every contact is tested in one parallel pass (it costs a tenth of the analysis on one
+  // thread); the first that fails is then described, so the message names the same contact
+  // whatever the number of threads.
+  const long n = static_cast<long>(in.contacts.size());
+  long first_bad = n;
+#pragma omp parallel for reduction(min : first_bad) schedule(static)
+  for (long k = 0; k < n; ++k)
+    if (!contact_problem(in.contacts[static_cast<std::size_t>(k)], in.num_bodies, false).empty())
+      first_bad = std::min(first_bad, k);
+  if (first_bad < n)
+    throw std::invalid_argument(
+        "contact " + std::to_string(first_bad) + ": " +
+        contact_problem(in.contacts[static_cast<std::size_t>(first_bad)], in.num_bodies, true));
 }
 
 SnapshotChecks check_snapshot(const SnapshotInput& in, const SnapshotAnalysis& a,

@@ -1,0 +1,160 @@
+"""sffcal.sff (the compiled sffcal._core) against analytic answers, against what `sffcal sff`
+stores for a fresh run's snapshots (the same code: the same numbers, up to the solid volume's
+round-off), and the errors it names. Run by CTest as Python.Sff (PYTHONPATH=BUILD/python,
+SFFCAL_BIN=the sffcal binary)."""
+import os
+import re
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from sffcal import sff
+
+
+def fibonacci_sphere(n):
+    """n nearly uniform unit vectors (a spiral on the sphere)."""
+    k = np.arange(n) + 0.5
+    z = 1 - 2 * k / n
+    phi = np.pi * (1 + 5 ** 0.5) * k
+    r = np.sqrt(1 - z * z)
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+
+
+def isotropic_contacts(n=4000, force=10.0, length=2e-3):
+    normal = fibonacci_sphere(n)
+    bodies = np.arange(2 * n).reshape(n, 2)
+    return sff.contacts(normal=normal, normal_force=np.full(n, force),
+                        tangential_force=np.zeros((n, 3)), branch=length * normal,
+                        body_a=bodies[:, 0], body_b=bodies[:, 1]), 2 * n
+
+
+def test_the_dtype_is_the_run_files_contact_record():
+    assert sff.CONTACT_DTYPE.itemsize == 136
+    assert sff.CONTACT_DTYPE.names == ("body_a", "body_b", "wall", "sliding", "point", "normal",
+                                       "branch", "overlap", "normal_force", "tangential_force")
+
+
+def test_isotropic_contacts_give_the_love_weber_stress_and_no_anisotropy():
+    records, bodies = isotropic_contacts()
+    volume = 1e-3
+    out = sff.analyse(records, volume=volume, solid_volume=0.6 * volume, num_bodies=bodies,
+                      youngs_modulus=1e8, friction=0.5)
+    # sigma = (1/V) sum f l n n = (N f l / 3V) I for directions uniform on the sphere.
+    expected = len(records) * 10.0 * 2e-3 / (3 * volume)
+    assert out["p"] == pytest.approx(expected, rel=1e-9)
+    assert abs(out["q"]) < 1e-3 * expected
+    np.testing.assert_allclose(out["stress_tensor"], expected * np.eye(3), atol=1e-3 * expected)
+    assert abs(out["a_c"]) < 1e-3 and abs(out["a_n"]) < 1e-3 and out["a_t"] == 0
+    assert out["coordination"] == pytest.approx(2 * len(records) / bodies)
+    assert out["void_ratio"] == pytest.approx(0.4 / 0.6)
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    """A fresh 150-clump run to 3 % with snapshots, analysed by `sffcal sff`."""
+    work = tmp_path_factory.mktemp("run")
+    binary = os.environ["SFFCAL_BIN"]
+    config = subprocess.run([binary, "config"], check=True, capture_output=True, text=True).stdout
+    config = re.sub(r"(?m)^bodies = .*", "bodies = 150", config)
+    config = re.sub(r"(?m)^max_axial_strain = .*", "max_axial_strain = 0.03", config)
+    config = re.sub(r"(?m)^snapshot_strain_interval = .*", "snapshot_strain_interval = 0.01", config)
+    (work / "small.toml").write_text(config)
+    subprocess.run([binary, "dem", "-c", str(work / "small.toml"), "-o", str(work / "run.h5")],
+                   check=True, capture_output=True)
+    subprocess.run([binary, "sff", str(work / "run.h5"), "--resamples", "0"], check=True,
+                   capture_output=True)
+    return work / "run.h5"
+
+
+def snapshot_arguments(f, name, solid_volume):
+    """The analysis' arguments for snapshot `name`, as the C++ reader builds them
+    (sff/src/run_snapshot.cc): the box from the walls, the walls' stress, the centroids."""
+    s = f["snapshots"][name]
+    walls = s["walls"][()]
+    lo, hi, force = np.zeros(3), np.zeros(3), np.zeros(3)
+    for w in walls:
+        (hi if w["upper"] else lo)[w["axis"]] = w["position"]
+        force[w["axis"]] += 0.5 * w["normal_force"]
+    size = hi - lo
+    volume = float(np.prod(size))
+    particles = s["particles"][()]
+    centroids = np.zeros((len(particles), 3))
+    centroids[particles["id"]] = particles["position"]
+    physics = f["physics"].attrs
+    return dict(contacts=s["contacts"][()], volume=volume, solid_volume=solid_volume,
+                num_bodies=len(particles), youngs_modulus=float(physics["youngs_modulus"]),
+                friction=float(physics["friction"]), wall_stress=force * size / volume,
+                centroids=centroids)
+
+
+def test_each_snapshot_gives_what_sffcal_sff_stored(run):
+    with h5py.File(run, "r") as f:
+        stored = {k: v[()] for k, v in f["analysis/sff"].items()}
+        names = sorted(f["snapshots"])
+        assert len(names) >= 3 and len(stored["p"]) == len(names)
+        for row, name in enumerate(names):
+            # The solid volume from the stored void ratio: e = V / V_s - 1.
+            first = snapshot_arguments(f, name, 1.0)
+            arguments = snapshot_arguments(f, name, first["volume"] / (1 + stored["void_ratio"][row]))
+            assert arguments["contacts"].dtype == sff.CONTACT_DTYPE  # the file's, read in place
+            out = sff.analyse(**arguments)
+            compared = 0
+            for column, values in stored.items():
+                if column in ("snapshot", "step", "axial_strain"):
+                    continue
+                assert out[column] == pytest.approx(values[row], rel=1e-9, abs=1e-12), column
+                compared += 1
+            assert compared == len(stored) - 3 > 100  # every column of the table
+
+
+def test_the_checks_are_seeded_and_sffcal_sffs(run):
+    with h5py.File(run, "r") as f:
+        name = sorted(f["snapshots"])[-1]
+        arguments = snapshot_arguments(f, name, 1.0)
+        e = f["analysis/sff/void_ratio"][-1]
+        arguments["solid_volume"] = arguments["volume"] / (1 + e)
+        stored = {k: v[-1] for k, v in f["analysis/sff_checks"].items()}
+    del arguments["wall_stress"], arguments["centroids"]
+    checks = sff.check(**arguments, resamples=0)
+    for column, value in stored.items():
+        if column in ("snapshot", "step", "axial_strain") or column.endswith(("_low", "_high")):
+            continue
+        assert checks[column] == pytest.approx(value, rel=1e-9, abs=1e-12), column
+    a = sff.check(**arguments, resamples=30, seed=5)
+    b = sff.check(**arguments, resamples=30, seed=5)
+    assert a == b and a["a_c_low"] < a["a_c_high"]
+
+
+@pytest.mark.parametrize("change,words", [
+    (lambda r: r["normal"].__setitem__(3, [1.0, 1.0, 0.0]), "contact 3: the normal is not a unit"),
+    (lambda r: r["normal_force"].__setitem__(7, np.nan), "contact 7: a number is not finite"),
+    (lambda r: r["body_b"].__setitem__(2, 10 ** 9), "contact 2: body_b 1000000000"),
+    (lambda r: r["body_a"].__setitem__(4, r["body_b"][4]), "contact 4: body_a"),
+])
+def test_a_bad_contact_is_named(change, words):
+    records, bodies = isotropic_contacts(100)
+    change(records)
+    with pytest.raises(ValueError) as caught:
+        sff.analyse(records, volume=1e-3, solid_volume=6e-4, num_bodies=bodies,
+                    youngs_modulus=1e8, friction=0.5)
+    assert words in str(caught.value)
+
+
+def test_bad_arguments_are_named():
+    records, bodies = isotropic_contacts(100)
+    good = dict(volume=1e-3, solid_volume=6e-4, num_bodies=bodies, youngs_modulus=1e8, friction=0.5)
+    for key, value, words in [("volume", -1.0, "volume"), ("solid_volume", 2e-3, "solid volume"),
+                              ("friction", 0.0, "friction"), ("youngs_modulus", np.inf, "Young")]:
+        with pytest.raises(ValueError, match=words):
+            sff.analyse(records, **{**good, key: value})
+    with pytest.raises(ValueError, match="CONTACT_DTYPE"):
+        sff.analyse(np.zeros((100, 3)), **good)
+    with pytest.raises(ValueError, match="CONTACT_DTYPE"):
+        sff.analyse(records[::2], **good)  # not C-ordered: no silent copy
+    with pytest.raises(ValueError):  # no contact: the statistics are undefined
+        sff.analyse(records[:0], **good)
+    with pytest.raises(ValueError, match="rows"):
+        sff.contacts(normal=np.eye(3), normal_force=[1, 2], tangential_force=np.zeros((3, 3)),
+                     branch=np.eye(3), body_a=[0, 1, 2], body_b=[1, 2, 0])
