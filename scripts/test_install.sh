@@ -25,4 +25,24 @@ cmake -S examples/external_fe -B "$example" "${generator[@]}" -DCMAKE_BUILD_TYPE
 cmake --build "$example" --parallel "$(nproc)"
 (cd "$example" && ./external_fe ../../examples/acst_toyoura.json 0.03 10)
 test -s "$example/external_fe.vtu"
-echo "test_install: the installed package builds and runs examples/external_fe"
+# The Python package as installed: sffcal.models and sffcal.sff from the prefix alone, imported
+# from outside the tree.
+core=$(find "$PWD/$prefix" -name "_core*.so" -path "*/sffcal/*" | head -1)
+[ -n "$core" ] || { echo "test_install: no sffcal/_core*.so under $prefix" >&2; exit 1; }
+site=$(dirname "$(dirname "$core")")
+(cd /tmp && PYTHONPATH="$site" /usr/bin/python3 -c "
+import sffcal, sffcal.models, sffcal.sff
+assert sffcal.__file__.startswith('$site'), sffcal.__file__
+assert 'acst' in sffcal.models.model_names() and sffcal.sff.CONTACT_DTYPE.itemsize == 136
+") || { echo "test_install: the installed Python package does not import from $site" >&2; exit 1; }
+# The pure-Python part's pyproject.toml: pip installs it (from a copy: setuptools builds in the
+# source folder).
+scratch=$(mktemp -d)
+cp -r python/pyproject.toml python/sffcal "$scratch/"
+/usr/bin/python3 -m pip install -q --no-deps --no-build-isolation --target "$scratch/site" \
+  "$scratch" 2>/dev/null ||
+  { echo "test_install: pip cannot install python/ (pyproject.toml)" >&2; exit 1; }
+(cd /tmp && PYTHONPATH="$scratch/site" /usr/bin/python3 -c "import sffcal.runfile, sffcal.seeds") ||
+  { echo "test_install: the pip-installed pure-Python part does not import" >&2; exit 1; }
+rm -rf "$scratch"
+echo "test_install: the installed package builds and runs examples/external_fe; the Python package imports"
