@@ -1,6 +1,8 @@
 """Reading a run file (docs/run-file.md) with the names of the C++ runfile library: the series,
 the test summary (/summary), the run's physics (/physics), the loading path (/loading) and the
-analysis tables (/analysis/<name>); and the CSV tables the commands write."""
+analysis tables (/analysis/<name>); and the CSV tables the commands write. The snapshots
+(num_snapshots, read_snapshot, snapshot_input) are read by the C++ reader itself, through the
+compiled sffcal._core (docs/python.md)."""
 import csv
 import os
 import tomllib
@@ -125,6 +127,39 @@ def read_sff(path):
         return read_csv_table(path)
     with open_run(path) as f:
         return table(f, "sff")
+
+
+def _core():
+    """The compiled module, imported only where a snapshot is read: the scripts that use the rest
+    run from the source tree, which has none."""
+    try:
+        from sffcal import _core
+    except ImportError as error:
+        raise ImportError("reading snapshots needs the compiled module sffcal._core: put "
+                          f"BUILD/python on PYTHONPATH or install the package (docs/python.md); "
+                          f"{error}") from error
+    return _core
+
+
+def num_snapshots(path):
+    """The number of snapshots of a run file."""
+    return _core().num_snapshots(path)
+
+
+def read_snapshot(path, index):
+    """Snapshot `index` (0 first) of a run file, checked as every reader of the project checks it:
+    a dict of step, time, axial_strain and the structured arrays contacts (sffcal.sff's
+    CONTACT_DTYPE), particles, walls, and spheres (n, 4: x, y, z, radius [m]), sphere_body.
+    IndexError for a snapshot the file does not hold; RuntimeError naming what is wrong with one."""
+    return _core().read_snapshot(path, index)
+
+
+def snapshot_input(path, index):
+    """The arguments of sffcal.sff.analyse for snapshot `index`, as `sffcal sff` builds them (the
+    box and wall stress from the walls, the solid volume from the clumps' spheres, E and mu from
+    /physics, the centroids): sff.analyse(**snapshot_input(path, k)) gives what `sffcal sff`
+    stores for that snapshot."""
+    return _core().snapshot_input(path, index)
 
 
 def end_window(axial_strain, width=0.05):
