@@ -89,7 +89,7 @@ class Pipeline:
         the records compare contents, so rewriting an unchanged config reruns nothing)."""
         folder = self.path("configs")
         os.makedirs(folder, exist_ok=True)
-        with open(specimen_matrix.TEMPLATE) as f:
+        with open(os.path.join(ROOT, specimen_matrix.TEMPLATE)) as f:
             template = f.read()
         specimens = dict(specimen_matrix.matrix())
         dem = self.scene.get("dem", {})
@@ -131,7 +131,7 @@ class Pipeline:
         if stage == "triaxial":
             if self.scene.get("matrix"):
                 script = os.path.join(ROOT, "bench", "matrix", "run_matrix.sh")
-                return [Task(stage, "matrix", [script, specimen_matrix.TEMPLATE], runs,
+                return [Task(stage, "matrix", [script, os.path.join(ROOT, specimen_matrix.TEMPLATE)], runs,
                              # absolute: run_matrix.sh works from the repository root
                              [[script, os.path.abspath(self.path("runs")), str(self.runner.jobs),
                                str(self.scene["bodies"])]],

@@ -9,4 +9,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install_deps.sh
 ./scripts/build.sh
+source scripts/python_env.sh  # the scripts import the package sffcal as built (docs/python.md)
 /usr/bin/python3 scripts/pipeline.py "$@"

@@ -14,6 +14,7 @@
 # Usage: bench/calibration/matrix_means.sh [OUT=out/matrix_means] [JOBS=nproc] [MODELS="acst network"]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=${1:-out/matrix_means}
 jobs=${2:-$(nproc)}
 models=${3:-acst network}

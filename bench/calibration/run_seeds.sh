@@ -7,6 +7,7 @@
 # Usage: bench/calibration/run_seeds.sh OUT "SEEDS" "SPECIMENS" JOBS
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=$1
 seeds=$2
 specimens=$3

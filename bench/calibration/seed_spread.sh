@@ -9,6 +9,7 @@
 # Usage: bench/calibration/seed_spread.sh [OUT=out/seed_spread] [SEEDS="1 2 3 4"] [JOBS=nproc]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=${1:-out/seed_spread}
 seeds=${2:-1 2 3 4}
 jobs=${3:-$(nproc)}

@@ -19,7 +19,8 @@ def main():
     parser.add_argument("--only", default="")
     args = parser.parse_args()
     os.makedirs(args.folder, exist_ok=True)
-    with open(TEMPLATE) as f:
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+    with open(os.path.join(root, TEMPLATE)) as f:
         template = f.read()
     for name, keys in matrix():
         if args.only not in name:

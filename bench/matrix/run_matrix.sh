@@ -9,6 +9,7 @@
 # or a cluster job array with the same body indexed by $SLURM_ARRAY_TASK_ID.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=${1:-out/matrix}
 jobs=${2:-$(nproc)}
 bodies=${3:-500}

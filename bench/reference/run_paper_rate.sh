@@ -8,6 +8,7 @@
 # unscaled run, with the paper's grain masses)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 ./scripts/build.sh >/dev/null
 out=${1:-out/reference_20s}
 seed=${2:-1}

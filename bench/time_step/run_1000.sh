@@ -35,5 +35,5 @@ for s in $safeties; do
   run "$sffcal" "safety_$s" "$s"
   runs+=("$out/safety_$s.h5")
 done
-PYTHONPATH="$root/python" /usr/bin/python3 "$root/bench/reference/compare_paper_rate.py" \
+PYTHONPATH="$root/build/python" /usr/bin/python3 "$root/bench/reference/compare_paper_rate.py" \
   "${runs[@]}" --reference "$out/reference.h5" --png "$out/curves.png" | tee "$out/table.md"

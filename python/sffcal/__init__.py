@@ -1,4 +1,4 @@
-"""sffcal's Python side: one package for the scripts of scripts/ and bench/.
+"""sffcal's Python side: the package of the scripts of scripts/ and bench/, and the Python API.
 
 - runfile: reading a run file (the series, /summary, /physics, /loading and the analysis tables),
   with the names of the C++ runfile library, and the CSV tables the commands write;
@@ -8,9 +8,10 @@
 - seeds: the mean of several seeds of one specimen as a reduced run file, and the DEM's noise
   between them (scripts/mean_of_seeds.py, the main job's mean stage; bench/calibration/);
 - sff_table: the Markdown table of SFF results of several runs;
-- sff_plots: drawings shared by several scripts (the SFF decomposition of q/p).
+- sff_plots: drawings shared by several scripts (the SFF decomposition of q/p);
+- models, sff (compiled, sffcal._core): the constitutive models and the SFF analysis from numpy.
 
-The scripts import it as `sffcal`: each script folder has a `sffcal` link to python/sffcal (Python
-puts a script's own folder first on its path), and any other program can add python/ to
-PYTHONPATH.
+The scripts import the package as built (build/python: these modules and sffcal._core; their
+shell scripts source scripts/python_env.sh, which puts it on PYTHONPATH) or as installed
+(`cmake --install`); docs/python.md.
 """

@@ -6,14 +6,14 @@ x p'0 = 100, 200, 300 kPa. Anisotropic specimens: gravity deposition, dense and 
 angle 0, 30, 45, 60, 90 deg, at 100 kPa. All drained compression; then the other loading paths
 (issue 18): undrained compression and drained extension, dense and loose, at 100 and 200 kPa;
 true triaxial at b = 0.5, dense, 100 kPa; drained extension of the dense deposit at 45 deg. Every
-config starts from examples/quick_triaxial.toml and changes only the keys below; the seed is the
+config starts from the repository's examples/quick_triaxial.toml (TEMPLATE, relative to the
+repository's root: the callers are its scripts) and changes only the keys below; the seed is the
 same for all (the density, pressure and angle are what differ).
 """
-import os
 import re
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
-TEMPLATE = os.path.join(ROOT, "examples", "quick_triaxial.toml")
+# The template every specimen's config starts from, relative to the repository's root.
+TEMPLATE = "examples/quick_triaxial.toml"
 # Compaction friction. The loosest stays below the shearing friction (tan 30 deg): with a higher
 # one, the contacts beyond the new Coulomb limit slip when shearing starts and the specimen
 # collapses (measured with 1.0: q/p dips to -0.3 and 6 % volumetric strain in the first 1 %).
