@@ -1,17 +1,15 @@
 #include "calibrate_command.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <functional>
-#include <memory>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include <CLI/CLI.hpp>
 #include <omp.h>
 
+#include "calibration/calibrate.h"
 #include "calibration/model_fit.h"
 
 namespace sffcal {
@@ -28,40 +26,6 @@ std::function<void(const std::string&)> progress_printer() {
   };
 }
 
-std::vector<calibration::TestData> read_tests(const std::vector<std::string>& paths,
-                                              const char* role) {
-  std::vector<calibration::TestData> tests;
-  for (const std::string& path : paths) {
-    tests.push_back(calibration::read_run_file(path));
-    const calibration::TestData& t = tests.back();
-    std::printf("read %s (%s): %zu rows, %zu snapshots, p0 = %.0f Pa, e0 = %.4f, a_c0 = %.4f, "
-                "mu = %.4f\n",
-                path.c_str(), role, t.axial_strain.size(), t.a_c.size(), t.p0, t.e0, t.a_c0,
-                t.friction);
-  }
-  return tests;
-}
-
-void refuse_shared_runs(const std::vector<calibration::TestData>& tests,
-                        const std::vector<calibration::TestData>& held_out) {
-  for (const calibration::TestData& h : held_out)
-    for (const calibration::TestData& t : tests)
-      if (h.source == t.source)
-        throw std::runtime_error("'" + h.source + "' is both fitted and held out");
-}
-
-// A setting given on the command line that the model's fit does not read, refused by name.
-void refuse_unread_settings(const calibration::ModelFit& fit, const std::vector<std::string>& given) {
-  const std::vector<std::string> reads = fit.reads();
-  for (const std::string& name : given)
-    if (std::find(reads.begin(), reads.end(), name) == reads.end()) {
-      std::string listed;
-      for (const std::string& r : reads) listed += (listed.empty() ? "--" : ", --") + r;
-      throw std::invalid_argument("--" + name + " does not apply to --model " + fit.model() +
-                                  " (its fit reads -o, --hold-out, " + listed + ")");
-    }
-}
-
 }  // namespace
 
 std::vector<std::string> given_settings(const CLI::App& calibrate) {
@@ -73,29 +37,25 @@ std::vector<std::string> given_settings(const CLI::App& calibrate) {
 
 int calibrate_command(const std::vector<std::string>& run_paths,
                       const CalibrateCommandOptions& options, const std::string& command_line) {
-  calibration::FitSettings settings = options.settings;
-  settings.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-  settings.progress = progress_printer();
-  const std::unique_ptr<calibration::ModelFit> fit =
-      calibration::make_fit(options.model, settings);
-  refuse_unread_settings(*fit, options.given);
-  std::vector<calibration::TestData> tests = read_tests(run_paths, "fitted");
-  std::vector<calibration::TestData> held_out = read_tests(options.held_out, "held out");
-  refuse_shared_runs(tests, held_out);
-  calibration::check_unique_names(tests, held_out);
-  for (auto* list : {&tests, &held_out})
-    for (calibration::TestData& t : *list) t = fit->prepare(std::move(t));
-  const auto start = std::chrono::steady_clock::now();
-  fit->fit(tests);
-  fit->predict(held_out);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options.settings.verbose && !fit->report().empty()) std::printf("%s\n", fit->report().c_str());
-  const std::string summary = fit->write_outputs(options.output_folder, SFFCAL_VERSION, command_line);
-  std::printf("\n%s\ncalibrated in %.1f s; outputs in %s (plot: %s)\n", summary.c_str(), seconds,
-              options.output_folder.c_str(),
-              fit->plot_hint(options.output_folder, run_paths).c_str());
-  return fit->usable() ? 0 : 1;
+  calibration::CalibrationRequest request;
+  request.runs = run_paths;
+  request.held_out = options.held_out;
+  request.model = options.model;
+  request.settings = options.settings;
+  request.settings.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  request.settings.progress = progress_printer();
+  request.given = options.given;
+  request.spell = [](const std::string& name) {
+    return name == "output" ? std::string("-o") : "--" + name;
+  };
+  request.output_folder = options.output_folder;
+  request.program_version = SFFCAL_VERSION;
+  request.command_line = command_line;
+  const calibration::CalibrationOutcome outcome = calibration::calibrate(request);
+  if (options.settings.verbose && !outcome.report.empty()) std::printf("%s\n", outcome.report.c_str());
+  std::printf("\n%s\ncalibrated in %.1f s; outputs in %s (plot: %s)\n", outcome.summary.c_str(),
+              outcome.seconds, options.output_folder.c_str(), outcome.plot_hint.c_str());
+  return outcome.usable ? 0 : 1;
 }
 
 void add_calibrate_options(CLI::App& calibrate, CalibrateCommandOptions& options) {

@@ -1,0 +1,56 @@
+"""sffcal.calibration (the compiled sffcal._fit): the fit from Python writes what `sffcal
+calibrate` writes for the same runs and settings (the same parameters, bit for bit), and refuses by
+name a setting the model's fit does not read, an unknown one and an output folder in use. Run by
+CTest as Python.Calibration (PYTHONPATH=BUILD/python, SFFCAL_BIN=the sffcal binary)."""
+import json
+import os
+import subprocess
+
+import pytest
+
+from sffcal import calibration
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+RUNS = [os.path.join(ROOT, "tests", "data", "reference", "matrix", name + ".h5")
+        for name in ("iso_dense_100kPa", "iso_dense_200kPa")]
+
+
+def parameters(folder):
+    with open(os.path.join(folder, "parameters.json")) as f:
+        return json.load(f)["parameters"]
+
+
+def test_the_fit_from_python_equals_sffcal_calibrate(tmp_path):
+    lines = []
+    fit = calibration.calibrate(RUNS, str(tmp_path / "python"), model="linear_elastic",
+                                progress=lines.append, points=20)
+    subprocess.run([os.environ["SFFCAL_BIN"], "calibrate", *RUNS, "-o", str(tmp_path / "cli"),
+                    "--model", "linear_elastic", "--points", "20"],
+                   check=True, capture_output=True)
+    assert fit["usable"] and fit["summary"]
+    mine, theirs = parameters(tmp_path / "python"), parameters(tmp_path / "cli")
+    assert set(mine) == set(theirs) == {"youngs_modulus", "poissons_ratio"}
+    for name in mine:
+        assert mine[name]["value"] == theirs[name]["value"], name
+    assert fit["parameters"]["youngs_modulus"] == mine["youngs_modulus"]["value"]
+    assert sum(line.startswith("read ") for line in lines) == 2
+
+
+@pytest.mark.parametrize("settings,words", [
+    ({"stages": "csl"}, "stages does not apply to model linear_elastic (its fit reads output, held_out"),
+    ({"iterations": 3}, "no setting 'iterations'"),
+    ({"threads": 0}, "threads must be >= 1"),
+])
+def test_a_setting_is_refused_by_name(tmp_path, settings, words):
+    with pytest.raises(ValueError) as caught:
+        calibration.calibrate(RUNS, str(tmp_path / "fit"), model="linear_elastic", **settings)
+    assert words in str(caught.value)
+
+
+def test_an_output_folder_in_use_is_refused(tmp_path):
+    (tmp_path / "kept.txt").write_text("mine")
+    with pytest.raises(ValueError, match="not an empty folder"):
+        calibration.calibrate(RUNS, str(tmp_path), model="linear_elastic")
+    assert (tmp_path / "kept.txt").read_text() == "mine"
+    with pytest.raises(ValueError, match="unknown model"):
+        calibration.calibrate(RUNS, str(tmp_path / "new"), model="sand")
