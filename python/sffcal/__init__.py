@@ -15,3 +15,12 @@ The scripts import the package as built (build/python: these modules and sffcal.
 shell scripts source scripts/python_env.sh, which puts it on PYTHONPATH) or as installed
 (`cmake --install`); docs/python.md.
 """
+
+
+def __getattr__(name):
+    """sffcal.calibrate: sffcal.calibration.calibrate, imported when first asked for (it loads
+    the compiled sffcal._fit and Ceres, which the scripts' modules do not need)."""
+    if name == "calibrate":
+        from sffcal.calibration import calibrate
+        return calibrate
+    raise AttributeError(f"module 'sffcal' has no attribute '{name}'")

@@ -8,6 +8,7 @@ import subprocess
 
 import pytest
 
+import sffcal
 from sffcal import calibration
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -34,6 +35,7 @@ def test_the_fit_from_python_equals_sffcal_calibrate(tmp_path):
         assert mine[name]["value"] == theirs[name]["value"], name
     assert fit["parameters"]["youngs_modulus"] == mine["youngs_modulus"]["value"]
     assert sum(line.startswith("read ") for line in lines) == 2
+    assert sffcal.calibrate is calibration.calibrate
 
 
 @pytest.mark.parametrize("settings,words", [
