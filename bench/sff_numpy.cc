@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ int main(int argc, char** argv) {
     std::ifstream file(argv[1], std::ios::binary | std::ios::ate);
     if (!file) throw std::runtime_error(std::string("cannot read ") + argv[1]);
     const std::streamsize bytes = file.tellg();
+    if (bytes % static_cast<std::streamsize>(sizeof(runfile::ContactRecord)) != 0)
+      throw std::runtime_error(std::string(argv[1]) + " is not a whole number of contact records");
     std::vector<runfile::ContactRecord> contacts(static_cast<std::size_t>(bytes) /
                                                  sizeof(runfile::ContactRecord));
     file.seekg(0);

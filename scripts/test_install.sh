@@ -40,8 +40,8 @@ assert 'acst' in sffcal.models.model_names() and sffcal.sff.CONTACT_DTYPE.itemsi
 scratch=$(mktemp -d)
 cp -r python/pyproject.toml python/sffcal "$scratch/"
 /usr/bin/python3 -m pip install -q --no-deps --no-build-isolation --target "$scratch/site" \
-  "$scratch" 2>/dev/null ||
-  { echo "test_install: pip cannot install python/ (pyproject.toml)" >&2; exit 1; }
+  "$scratch" > "$scratch/pip.log" 2>&1 ||
+  { cat "$scratch/pip.log" >&2; echo "test_install: pip cannot install python/ (pyproject.toml)" >&2; exit 1; }
 (cd /tmp && PYTHONPATH="$scratch/site" /usr/bin/python3 -c "import sffcal.runfile, sffcal.seeds") ||
   { echo "test_install: the pip-installed pure-Python part does not import" >&2; exit 1; }
 rm -rf "$scratch"

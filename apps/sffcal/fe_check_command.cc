@@ -64,19 +64,16 @@ int umat_cards_command(const fe_model::UmatCardOptions& options) {
 int point_command(const fe_model::PointPathOptions& options, const std::string& output) {
   const fe_model::PointPathResult result = fe_model::run_point_path(options);
   fe_model::write_point_path_csv(output, options, result);
-  const model::DriverPoint& start = result.path.points.front();
   const model::DriverPoint& end = result.path.points.back();
-  const auto p = [](const model::DriverPoint& x) { return x.stress.trace() / 3.0; };
-  const auto q = [](const model::DriverPoint& x) {
-    return x.stress(2, 2) - 0.5 * (x.stress(0, 0) + x.stress(1, 1));
-  };
+  const model::TriaxialStress start_stress = model::triaxial_stress(result.path.points.front().stress);
+  const model::TriaxialStress end_stress = model::triaxial_stress(end.stress);
   std::printf("%s, %s to axial strain %g in %d steps; start: sigma_3 %g Pa, inputs %s\n",
               result.model.c_str(), model::to_string(options.drainage), options.axial_strain_end,
               options.steps, result.start.confining_pressure, result.start.source.c_str());
   std::printf("start: p %.6g Pa, q %.6g Pa\nend:   axial strain %.6g, volumetric strain %.6g, "
               "p %.6g Pa, q %.6g Pa, q/p %.6g\n",
-              p(start), q(start), end.strain(2, 2), end.strain.trace(), p(end), q(end),
-              q(end) / p(end));
+              start_stress.p, start_stress.q, end.strain(2, 2), end.strain.trace(), end_stress.p,
+              end_stress.q, end_stress.q / end_stress.p);
   std::printf("CSV: %s\n", output.c_str());
   if (result.path.completed) return 0;
   std::fprintf(stderr, "sffcal: the path stopped after %zu of %d steps: %s\n",

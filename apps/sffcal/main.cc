@@ -135,17 +135,24 @@ int main(int argc, char** argv) {
   fe_check->add_flag("-v,--verbose", fe_check_options.verbose, "print the Newton logs");
 
   // The start of umat-cards and point (fe_model/model_start.h): a DEM run's, or a plain specimen's.
+  // A plain specimen's flags and --dem exclude each other, and --a-cs needs --dem: nothing given
+  // is silently ignored.
   const auto add_start_options = [](CLI::App& command, fe_model::StartOptions& start) {
-    command.add_option("--dem", start.dem_run,
-                       "start from this DEM run (sigma_3, e_0 and the model's initial state, as "
-                       "fe-check takes them); without it, a plain specimen")
-        ->check(CLI::ExistingFile);
+    CLI::Option* dem_run = command.add_option(
+        "--dem", start.dem_run,
+        "start from this DEM run (sigma_3, e_0 and the model's initial state, as fe-check takes "
+        "them); without it, a plain specimen");
+    dem_run->check(CLI::ExistingFile);
     command.add_option("--pressure", start.confining_pressure, "plain specimen: sigma_3 [Pa]")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->excludes(dem_run);
     command.add_option("--void-ratio", start.void_ratio, "plain specimen: e_0")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->excludes(dem_run);
     command.add_option("--a-cs", start.a_cs,
-                       "ACST: DEM fabric normalisation (default: the parameter file's, else 0.827)");
+                       "ACST with --dem: DEM fabric normalisation (default: the parameter file's, "
+                       "else 0.827)")
+        ->needs(dem_run);
   };
   fe_model::UmatCardOptions cards_options;
   std::string cards_elements;

@@ -14,7 +14,6 @@
 # Usage: bench/calibration/matrix_means.sh [OUT=out/matrix_means] [JOBS=nproc] [MODELS="acst network"]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=${1:-out/matrix_means}
 jobs=${2:-$(nproc)}
 models=${3:-acst network}
@@ -22,6 +21,7 @@ seeds="1 2 3"
 fitted="iso_dense_100kPa iso_loose_100kPa iso_loose_300kPa dep_dense_a00 dep_dense_a90 ext_dense_100kPa ext_loose_100kPa und_dense_100kPa"
 held="iso_medium_200kPa iso_dense_200kPa iso_loose_200kPa dep_dense_a45 ext_dense_200kPa und_dense_200kPa dep_dense_a45_ext"
 ./scripts/build.sh >/dev/null
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 bench/calibration/run_seeds.sh "$out" "$seeds" "$fitted $held" "$jobs"
 mkdir -p "$out/mean"
 for name in $fitted $held; do

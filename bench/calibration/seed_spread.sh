@@ -9,11 +9,11 @@
 # Usage: bench/calibration/seed_spread.sh [OUT=out/seed_spread] [SEEDS="1 2 3 4"] [JOBS=nproc]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=${1:-out/seed_spread}
 seeds=${2:-1 2 3 4}
 jobs=${3:-$(nproc)}
 ./scripts/build.sh >/dev/null
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 fitted="iso_dense_100kPa iso_medium_100kPa iso_loose_100kPa iso_dense_200kPa iso_medium_200kPa iso_loose_200kPa"
 bench/calibration/run_seeds.sh "$out" "$seeds" "$fitted" "$jobs"
 for seed in $seeds; do

@@ -9,12 +9,12 @@
 # or a cluster job array with the same body indexed by $SLURM_ARRAY_TASK_ID.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=${1:-out/matrix}
 jobs=${2:-$(nproc)}
 bodies=${3:-500}
 only=${4:-}
 ./scripts/build.sh >/dev/null
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 mkdir -p "$out/configs"
 /usr/bin/python3 bench/matrix/make_configs.py "$out/configs" --bodies "$bodies" --only "$only" >/dev/null
 start=$(date +%s)

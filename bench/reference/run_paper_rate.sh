@@ -8,8 +8,8 @@
 # unscaled run, with the paper's grain masses)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 ./scripts/build.sh >/dev/null
+source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 out=${1:-out/reference_20s}
 seed=${2:-1}
 scaling=${3:-16.0}

@@ -169,7 +169,19 @@ class AnyModelFit final : public ModelFit {
 
 }  // namespace
 
+void check_settings(const FitSettings& s) {
+  const auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  require(s.starts >= 1 && s.starts <= 100, "starts must be in 1..100");
+  require(s.max_points >= 3 && s.max_points <= 100000, "points must be in 3..100000");
+  require(s.max_strain_step >= 0.0 && s.max_strain_step <= 0.1,
+          "max-strain-step must be in [0, 0.1] (0: the rows only)");
+  require(s.threads >= 1 && s.threads <= 1024, "threads must be in 1..1024");
+}
+
 std::unique_ptr<ModelFit> make_fit(const std::string& model, const FitSettings& settings) {
+  check_settings(settings);
   if (model == "acst") return std::make_unique<AcstFit>(settings);
   if (model == "contact_network" || model == "network")
     return std::make_unique<NetworkFit>(settings);

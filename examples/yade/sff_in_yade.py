@@ -29,6 +29,7 @@ from yade.wrapper import (ForceResetter, InsertionSortCollider, Bo1_Sphere_Aabb,
 from sffcal import sff
 
 O = Omega()
+DENSITY = 2650.0  # the grains' [kg/m^3]: the clumps' volumes are their masses over it
 
 
 def arguments():
@@ -41,7 +42,7 @@ def arguments():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--tolerance", type=float, default=1e-10,
                         help="largest relative difference accepted in the fabric and the stress")
-    parser.add_argument("--json", help="write the figures here")
+    parser.add_argument("--json", help="write the figures here (a new file)")
     return parser.parse_args(sys.argv[1:])
 
 
@@ -52,7 +53,7 @@ def build(args):
     side = r * (args.clumps * 32.0) ** (1.0 / 3.0)  # about 22 % solid before compaction
     O.periodic = True
     O.cell.setBox(side, side, side)
-    O.materials.append(FrictMat(young=args.youngs_modulus, poisson=0.5, density=2650,
+    O.materials.append(FrictMat(young=args.youngs_modulus, poisson=0.5, density=DENSITY,
                                 frictionAngle=math.atan(args.friction)))
     clump = pack.SpherePack([((0, 0, 0), r), ((r, 0, 0), r)])
     cloud = pack.SpherePack()
@@ -74,16 +75,9 @@ def build(args):
     O.run(limit, True)  # the controller's doneHook pauses at the target
     if O.iter >= limit:
         sys.exit(f"sff_in_yade: the compaction did not reach {args.pressure:g} Pa in {limit} steps")
-    if not O.engines[3].done if hasattr(O.engines[3], "done") else False:
-        pass
 
 
-def clump_of(body_id, clumps):
-    """The index (0..N-1) of the clump a sphere belongs to."""
-    return clumps[O.bodies[body_id].clumpId]
-
-
-def contact_records():
+def contact_records(friction):
     """YADE's real interactions between clumps as sffcal contact records: A = id1's clump, B =
     id2's; YADE's normal points from 1 to 2 and its normalForce + shearForce is the force on 2;
     the branch vector from clump centroid to clump centroid, B's shifted by the cell's hSize *
@@ -98,7 +92,7 @@ def contact_records():
         branch = O.bodies[b.clumpId].state.pos + h * i.cellDist - O.bodies[a.clumpId].state.pos
         fn = np.array(i.phys.normalForce)
         records[k] = (clumps[a.clumpId], clumps[b.clumpId], -1,
-                      int(np.linalg.norm(i.phys.shearForce) >= args.friction * np.linalg.norm(fn)
+                      int(np.linalg.norm(i.phys.shearForce) >= friction * np.linalg.norm(fn)
                           * (1 - 1e-9)),
                       tuple(i.geom.contactPoint), tuple(n), tuple(branch),
                       i.geom.penetrationDepth, float(fn.dot(n)), tuple(i.phys.shearForce))
@@ -112,11 +106,11 @@ def relative(a, b):
 args = arguments()
 build(args)
 volume = O.cell.volume
-solid = sum(b.state.mass for b in O.bodies if b.isClump) / 2650.0
+solid = sum(b.state.mass for b in O.bodies if b.isClump) / DENSITY  # the clumps' own volumes
 common = dict(volume=volume, solid_volume=solid, youngs_modulus=args.youngs_modulus,
               friction=args.friction)
 
-records, bodies = contact_records()
+records, bodies = contact_records(args.friction)
 result = sff.analyse(records, num_bodies=bodies, **common)
 
 phi_yade = np.array(utils.fabricTensor()[0] if isinstance(utils.fabricTensor(), tuple)
@@ -139,7 +133,7 @@ figures = {
 for name, value in figures.items():
     print(f"{name:34} {value}")
 if args.json:
-    with open(args.json, "w") as f:
+    with open(args.json, "x") as f:  # never over an existing file
         json.dump(figures, f, indent=1)
 ok = (figures["fabric_difference"] <= args.tolerance
       and figures["stress_difference"] <= args.tolerance)

@@ -21,6 +21,7 @@
 #include "model/network_path.h"
 #include "model/point_driver.h"
 #include "runfile/dem_test.h"
+#include "sffcal/format_number.h"
 #include "sffcal/output_file.h"
 
 namespace fe_model {
@@ -403,9 +404,9 @@ Curve drive_point(const model::Behaviour& behaviour, const std::vector<double>& 
   driver.completed = point.completed;
   driver.message = point.message;
   for (const model::DriverPoint& x : point.points) {
+    const model::TriaxialStress stress = model::triaxial_stress(x.stress);
     CurvePoint row = curve_point(
-        x.strain(2, 2), x.strain.trace(), x.stress.trace() / 3.0,
-        x.stress(2, 2) - 0.5 * (x.stress(0, 0) + x.stress(1, 1)),
+        x.strain(2, 2), x.strain.trace(), stress.p, stress.q,
         void_ratio < 0 ? std::numeric_limits<double>::quiet_NaN()
                        : x.state[static_cast<std::size_t>(void_ratio)],
         0.0);  // as the element writes a fabric invariant it does not know
@@ -460,8 +461,9 @@ Check any_model_check(const FeCheckOptions& options, const model::ParameterValue
 
 FeCheckResult run_fe_check(const FeCheckOptions& options, const FeCheckLog& log) {
   if (options.parameters_path.empty()) throw std::invalid_argument("fe-check needs --parameters");
-  if (!(options.max_strain > 0.0) || options.max_strain > 0.6)
-    throw std::invalid_argument("--max-strain must be in (0, 0.6]");
+  if (!(options.max_strain > 0.0) || options.max_strain > model::kMaxTriaxialStrain)
+    throw std::invalid_argument("--max-strain must be in (0, " +
+                                sffcal::format_number(model::kMaxTriaxialStrain) + "]");
   if (options.steps == 0) throw std::invalid_argument("--steps must be >= 1");
   if (!(options.integration_tolerance >= 0.0) || options.integration_tolerance > 1e-2)
     throw std::invalid_argument("--model-tol must be in [0, 1e-2] (0: no substep error control)");

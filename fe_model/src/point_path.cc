@@ -16,12 +16,13 @@ namespace fe_model {
 
 PointPathResult run_point_path(const PointPathOptions& options) {
   if (options.steps < 1) throw std::invalid_argument("--steps must be >= 1");
-  // As fe-check: past 60 % axial strain the small-strain measure means little.
+  // The driver's own limit (model::kMaxTriaxialStrain), named here by the flag.
   if (!std::isfinite(options.axial_strain_end) || options.axial_strain_end == 0.0 ||
-      std::abs(options.axial_strain_end) > 0.6)
+      std::abs(options.axial_strain_end) > model::kMaxTriaxialStrain)
     throw std::invalid_argument("--max-strain " + sffcal::format_number(options.axial_strain_end) +
-                                ": give a non-zero axial strain of at most 0.6 in size (negative: "
-                                "extension)");
+                                ": give a non-zero axial strain of at most " +
+                                sffcal::format_number(model::kMaxTriaxialStrain) +
+                                " in size (negative: extension)");
   const model::ParameterValues values = model::read_parameter_file(options.parameters_path);
   const model::ModelDescription& description = model::find_model(values.model);
   PointPathResult result;
@@ -56,8 +57,7 @@ void write_point_path_csv(const std::string& path, const PointPathOptions& optio
          "newton_iterations,status\n";
   for (std::size_t k = 0; k < result.path.points.size(); ++k) {
     const model::DriverPoint& x = result.path.points[k];
-    const double p = x.stress.trace() / 3.0;
-    const double q = x.stress(2, 2) - 0.5 * (x.stress(0, 0) + x.stress(1, 1));
+    const auto [p, q] = model::triaxial_stress(x.stress);
     out << k << ',' << x.strain(2, 2) << ',' << x.strain.trace() << ',';
     if (result.void_ratio_offset >= 0)
       out << x.state[static_cast<std::size_t>(result.void_ratio_offset)];

@@ -3,7 +3,6 @@
 
 #include <Eigen/Core>
 
-#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>

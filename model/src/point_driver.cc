@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/parameter_field.h"
+
 namespace model {
 
 const char* to_string(Drainage drainage) {
@@ -26,8 +28,11 @@ DriverPath drive_triaxial(const Behaviour& behaviour, const std::vector<double>&
   if (path.steps < 1) throw std::invalid_argument("triaxial path: steps must be >= 1");
   if (!(path.lateral_stress > 0.0) || !std::isfinite(path.lateral_stress))
     throw std::invalid_argument("triaxial path: the lateral stress must be positive [Pa]");
-  if (!std::isfinite(path.axial_strain_end))
-    throw std::invalid_argument("triaxial path: the end axial strain must be finite");
+  if (!std::isfinite(path.axial_strain_end) || path.axial_strain_end == 0.0 ||
+      std::abs(path.axial_strain_end) > kMaxTriaxialStrain)
+    throw std::invalid_argument("triaxial path: the end axial strain must be non-zero and at most " +
+                                format_number(kMaxTriaxialStrain) +
+                                " in size (negative: extension)");
   if (!(path.stress_tolerance > 0.0))
     throw std::invalid_argument("triaxial path: the stress tolerance must be positive");
   const ModelDescription& description = behaviour.description();

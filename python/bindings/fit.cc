@@ -8,9 +8,12 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "calibration/calibrate.h"
@@ -26,24 +29,46 @@ std::string python_name(const std::string& name) {
   return spelled;
 }
 
-// FitSettings from keyword arguments named as kFitSettingNames (with underscores).
+// A setting's value as T; a TypeError naming the setting otherwise.
+template <typename T>
+T setting(const std::string& key, const py::handle& value) {
+  try {
+    return py::cast<T>(value);
+  } catch (const py::cast_error&) {
+    throw py::type_error("calibrate: setting '" + key + "' must be " +
+                         (std::is_same_v<T, std::string> ? "a str"
+                          : std::is_same_v<T, bool>      ? "a bool"
+                          : std::is_integral_v<T>        ? "an int (>= 0)"
+                                                         : "a number") +
+                         ", not " + std::string(py::str(value.get_type().attr("__name__"))));
+  }
+}
+
+// A list setting: one str, or a list of them.
+std::vector<std::string> settings_list(const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return {py::cast<std::string>(value)};
+  return setting<std::vector<std::string>>(key, value);
+}
+
+// FitSettings from keyword arguments named as kFitSettingNames (with underscores); the library
+// checks their ranges (calibration::check_settings).
 calibration::FitSettings settings_from(const py::kwargs& given, std::vector<std::string>& names) {
   calibration::FitSettings s;
   for (const auto& item : given) {
     const std::string key = py::str(item.first);
     const py::handle value = item.second;
-    if (key == "stages") s.stages = py::cast<std::string>(value);
-    else if (key == "loss") s.loss = py::cast<std::string>(value);
-    else if (key == "starts") s.starts = py::cast<int>(value);
-    else if (key == "seed") s.seed = py::cast<std::uint64_t>(value);
-    else if (key == "points") s.max_points = py::cast<int>(value);
-    else if (key == "max_strain_step") s.max_strain_step = py::cast<double>(value);
-    else if (key == "range") s.ranges = py::cast<std::vector<std::string>>(value);
-    else if (key == "hold") s.held = py::cast<std::vector<std::string>>(value);
-    else if (key == "predicted_only") s.predicted_only = py::cast<bool>(value);
-    else if (key == "start") s.start_file = py::cast<std::string>(value);
-    else if (key == "threads") s.threads = py::cast<int>(value);
-    else if (key == "verbose") s.verbose = py::cast<bool>(value);
+    if (key == "stages") s.stages = setting<std::string>(key, value);
+    else if (key == "loss") s.loss = setting<std::string>(key, value);
+    else if (key == "starts") s.starts = setting<int>(key, value);
+    else if (key == "seed") s.seed = setting<std::uint64_t>(key, value);
+    else if (key == "points") s.max_points = setting<int>(key, value);
+    else if (key == "max_strain_step") s.max_strain_step = setting<double>(key, value);
+    else if (key == "range") s.ranges = settings_list(key, value);
+    else if (key == "hold") s.held = settings_list(key, value);
+    else if (key == "predicted_only") s.predicted_only = setting<bool>(key, value);
+    else if (key == "start") s.start_file = setting<std::string>(key, value);
+    else if (key == "threads") s.threads = setting<int>(key, value);
+    else if (key == "verbose") s.verbose = setting<bool>(key, value);
     else {
       std::string known;
       for (const char* name : calibration::kFitSettingNames)
@@ -54,7 +79,6 @@ calibration::FitSettings settings_from(const py::kwargs& given, std::vector<std:
     for (const char* name : calibration::kFitSettingNames)
       if (python_name(name) == key) names.push_back(name);
   }
-  if (s.threads < 1) throw std::invalid_argument("calibrate: threads must be >= 1");
   return s;
 }
 
@@ -67,10 +91,18 @@ py::dict calibrate(const std::vector<std::string>& runs, const std::string& outp
   request.held_out = held_out;
   request.model = model;
   request.settings = settings_from(settings, request.given);
+  // An exception of the Python callback is kept, not thrown through the fit (Ceres does not
+  // promise to unwind cleanly): it is raised once the calibration has returned.
+  auto failure = std::make_shared<std::string>();
   if (progress)
-    request.settings.progress = [progress](const std::string& line) {
+    request.settings.progress = [progress, failure](const std::string& line) {
       py::gil_scoped_acquire acquire;
-      progress(line);
+      if (!failure->empty()) return;
+      try {
+        progress(line);
+      } catch (const py::error_already_set& e) {
+        *failure = e.what();
+      }
     };
   request.spell = [](const std::string& name) { return python_name(name); };
   request.output_folder = output;
@@ -81,6 +113,7 @@ py::dict calibrate(const std::vector<std::string>& runs, const std::string& outp
     py::gil_scoped_release release;
     outcome = calibration::calibrate(request);
   }
+  if (!failure->empty()) throw std::runtime_error("calibrate: the progress callback failed: " + *failure);
   py::dict out;
   out["summary"] = outcome.summary;
   out["report"] = outcome.report;

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "arrays.h"
 #include "model/batch_update.h"
 #include "model/descriptor.h"
 #include "model/parameter_file.h"
@@ -28,9 +29,6 @@ namespace py = pybind11;
 
 namespace sffcal_python {
 namespace {
-
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
 // The values of a table from a dict: every key must name an entry; an absent entry takes its
 // value_if_absent, or the one value a fixed constant admits; a required one absent is an error.
@@ -49,7 +47,12 @@ std::vector<double> values_from_dict(const std::vector<model::ParameterInfo>& ta
   std::vector<double> values;
   for (const model::ParameterInfo& info : table) {
     if (given.contains(info.name)) {
-      values.push_back(py::cast<double>(given[info.name]));
+      try {
+        values.push_back(py::cast<double>(given[info.name]));
+      } catch (const py::cast_error&) {
+        throw py::type_error("model '" + model_name + "': the " + what + " '" + info.name +
+                             "' must be a number [" + info.unit + "]");
+      }
     } else if (info.fixed()) {
       values.push_back(info.physical.low);
     } else if (!info.required()) {
@@ -87,20 +90,20 @@ py::list layout(const std::vector<model::Slot>& slots) {
   return out;
 }
 
-// A 3x3 stress from a number (an isotropic stress) or a (3, 3) array.
+// A 3x3 stress from a number (an isotropic stress; numpy scalars too) or a (3, 3) array, finite
+// and symmetric.
 Eigen::Matrix3d stress_argument(const py::object& value, const char* what) {
-  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
-    return py::cast<double>(value) * Eigen::Matrix3d::Identity();
   const Array a = py::cast<Array>(value);
+  if (a.ndim() == 0) {
+    const double x = *a.data();
+    if (!std::isfinite(x)) throw std::invalid_argument(std::string(what) + " is not finite");
+    return x * Eigen::Matrix3d::Identity();
+  }
   if (a.ndim() != 2 || a.shape(0) != 3 || a.shape(1) != 3)
     throw std::invalid_argument(std::string(what) + " must be a number or a (3, 3) array");
+  if (!finite_symmetric(a.data()))
+    throw std::invalid_argument(std::string(what) + " must be finite and symmetric");
   return Eigen::Map<const RowMajor3>(a.data());
-}
-
-py::array_t<double> matrix_array(const Eigen::Matrix3d& m) {
-  py::array_t<double> out({3, 3});
-  Eigen::Map<RowMajor3>(out.mutable_data()) = m;
-  return out;
 }
 
 class PyModel {
@@ -196,6 +199,18 @@ class PyModel {
       throw std::invalid_argument(
           "update takes stress (3, 3), state (" + std::to_string(m) + ",) and strain_increment "
           "(3, 3) for one point, or (n, 3, 3), (n, " + std::to_string(m) + ") and (n, 3, 3) for n");
+    // Every point's stress and increment finite and symmetric, every state finite: a model reads
+    // only one triangle of a tensor, and would integrate NaN as numbers.
+    for (py::ssize_t k = 0; k < n; ++k) {
+      const std::string which = single ? std::string() : " of point " + std::to_string(k);
+      if (!finite_symmetric(stress.data() + 9 * k))
+        throw std::invalid_argument("the stress" + which + " is not finite and symmetric");
+      if (!finite_symmetric(increment.data() + 9 * k))
+        throw std::invalid_argument("the strain increment" + which + " is not finite and symmetric");
+      for (py::ssize_t j = 0; j < m; ++j)
+        if (!std::isfinite(state.data()[m * k + j]))
+          throw std::invalid_argument("the state" + which + " is not finite");
+    }
     std::vector<py::ssize_t> lead = single ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{n};
     const auto with = [&](std::vector<py::ssize_t> tail) {
       std::vector<py::ssize_t> shape = lead;
@@ -335,7 +350,10 @@ inputs holds six components, 11 22 33 12 13 23.
            "sigma_yy = sigma_3) or 'undrained' (constant volume). Returns a dict: strain, stress "
            "(n, 3, 3), state (n, state_size), newton_iterations, status (per point, the start "
            "first), completed and message.");
-  m.attr("STATUS_NAMES") = py::make_tuple("ok", "unreliable", "failed");
+  // The names of the statuses, indexed by their values in a batch's status array.
+  m.attr("STATUS_NAMES") = py::make_tuple(model::to_string(model::UpdateStatus::kOk),
+                                          model::to_string(model::UpdateStatus::kUnreliable),
+                                          model::to_string(model::UpdateStatus::kFailed));
 }
 
 }  // namespace sffcal_python

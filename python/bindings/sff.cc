@@ -8,10 +8,12 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "arrays.h"
 #include "runfile/records.h"
 #include "sff/analysis.h"
 #include "sff/statistics.h"
@@ -22,13 +24,6 @@ namespace sffcal_python {
 namespace {
 
 using Contacts = py::array_t<runfile::ContactRecord, py::array::c_style>;
-using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
-
-py::array_t<double> matrix_array(const Eigen::Matrix3d& m) {
-  py::array_t<double> out({3, 3});
-  Eigen::Map<RowMajor3>(out.mutable_data()) = m;
-  return out;
-}
 
 // The analysis' input: the contacts in place; centroids (num_bodies, 3) where given.
 struct Input {
@@ -53,12 +48,12 @@ Input make_input(const py::array& contacts, double volume, double solid_volume, 
   in.input.youngs_modulus = youngs_modulus;
   in.input.friction = friction;
   if (!wall_stress.is_none()) {
-    const auto w = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(wall_stress);
+    const auto w = py::cast<Array>(wall_stress);
     if (w.size() != 3) throw std::invalid_argument("wall_stress: the three principal stresses (x, y, z) [Pa]");
     in.input.wall_stress = Eigen::Vector3d(w.data()[0], w.data()[1], w.data()[2]);
   }
   if (!centroids.is_none()) {
-    const auto c = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(centroids);
+    const auto c = py::cast<Array>(centroids);
     if (c.ndim() != 2 || c.shape(1) != 3)
       throw std::invalid_argument("centroids: an array (num_bodies, 3) [m]");
     for (py::ssize_t k = 0; k < c.shape(0); ++k)

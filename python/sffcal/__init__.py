@@ -9,7 +9,8 @@
   between them (scripts/mean_of_seeds.py, the main job's mean stage; bench/calibration/);
 - sff_table: the Markdown table of SFF results of several runs;
 - sff_plots: drawings shared by several scripts (the SFF decomposition of q/p);
-- models, sff (compiled, sffcal._core): the constitutive models and the SFF analysis from numpy.
+- models, sff (compiled, sffcal._core): the constitutive models and the SFF analysis from numpy;
+- calibration (compiled, sffcal._fit): the fit of a model to run files, as `sffcal calibrate`.
 
 The scripts import the package as built (build/python: these modules and sffcal._core; their
 shell scripts source scripts/python_env.sh, which puts it on PYTHONPATH) or as installed

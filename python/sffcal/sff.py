@@ -31,6 +31,8 @@ def contacts(normal, normal_force, tangential_force, branch, body_a, body_b, wal
     optional wall (n,) (default -1), sliding (n,) 0/1, point (n, 3) [m], overlap (n,) [m]. This
     copies once; analyse() then reads the result in place."""
     normal = np.asarray(normal, dtype=float)
+    if normal.ndim != 2 or normal.shape[1] != 3:
+        raise ValueError(f"contacts: normal must be an array (n, 3), not of shape {normal.shape}")
     n = len(normal)
     records = np.zeros(n, dtype=CONTACT_DTYPE)
     records["wall"] = -1
@@ -41,7 +43,11 @@ def contacts(normal, normal_force, tangential_force, branch, body_a, body_b, wal
         if value is None:
             continue
         value = np.asarray(value)
-        if len(value) != n:
-            raise ValueError(f"contacts: {name} has {len(value)} rows, normal has {n}")
+        shape = (n,) + CONTACT_DTYPE[name].shape
+        if value.shape != shape:  # no broadcasting: one row per contact, as given
+            raise ValueError(f"contacts: {name} must be of shape {shape}, not {value.shape}")
+        integral = np.issubdtype(CONTACT_DTYPE[name].base, np.integer)
+        if integral and not np.issubdtype(value.dtype, np.integer):
+            raise ValueError(f"contacts: {name} must hold integers, not {value.dtype}")
         records[name] = value
     return records

@@ -75,6 +75,10 @@ refused "--drainage" "--drainage partly" --parameters "$work/elastic.json" --dra
 refused "--pressure" "--pressure -1" --parameters "$work/elastic.json" --pressure -1
 refused "--dem" "the network without a DEM run" \
   --parameters "$root/bench/reference/network_paper_params.json"
+refused "excludes" "--pressure with --dem (it would be ignored)" \
+  --parameters "$root/examples/acst_toyoura.json" --dem "$runs/dep_dense_a90.h5" --pressure 5e5
+refused "requires --dem" "--a-cs without --dem (it would be ignored)" \
+  --parameters "$root/examples/acst_toyoura.json" --a-cs 0.8
 refused "void ratio" "a void ratio ACST cannot carry" \
   --parameters "$root/examples/acst_toyoura.json" --void-ratio 5
 out=$("$sffcal" point --parameters "$work/elastic.json" -o "$work/elastic.json" --force 2>&1)

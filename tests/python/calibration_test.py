@@ -41,12 +41,19 @@ def test_the_fit_from_python_equals_sffcal_calibrate(tmp_path):
 @pytest.mark.parametrize("settings,words", [
     ({"stages": "csl"}, "stages does not apply to model linear_elastic (its fit reads output, held_out"),
     ({"iterations": 3}, "no setting 'iterations'"),
-    ({"threads": 0}, "threads must be >= 1"),
+    ({"threads": 0}, "threads must be in 1..1024"),
+    ({"points": 0}, "points must be in 3..100000"),
+    ({"max_strain_step": float("nan")}, "max-strain-step must be in [0, 0.1]"),
 ])
 def test_a_setting_is_refused_by_name(tmp_path, settings, words):
     with pytest.raises(ValueError) as caught:
         calibration.calibrate(RUNS, str(tmp_path / "fit"), model="linear_elastic", **settings)
     assert words in str(caught.value)
+
+
+def test_a_setting_of_the_wrong_type_is_a_type_error_naming_it(tmp_path):
+    with pytest.raises(TypeError, match="setting 'starts' must be an int"):
+        calibration.calibrate(RUNS, str(tmp_path / "fit"), model="acst", starts=2.5)
 
 
 def test_an_output_folder_in_use_is_refused(tmp_path):

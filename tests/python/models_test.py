@@ -121,6 +121,13 @@ def test_network_triaxial_from_a_deposit_equals_sffcal_point(tmp_path):
     assert np.all(np.abs(np.trace(path["strain"], axis1=1, axis2=2)) < 1e-17)
 
 
+def test_numpy_scalars_are_numbers():
+    model = elastic()
+    for value in (np.float32(1e5), np.int64(100000), 1e5):
+        stress, _ = model.initial_state(value)
+        assert np.array_equal(stress, 1e5 * np.eye(3))
+
+
 def test_inputs_by_name_equal_inputs_by_position():
     model = models.Model.from_file(ACST)
     fabric = np.diag([-0.1, -0.1, 0.2])
@@ -148,6 +155,20 @@ def test_inputs_by_name_equal_inputs_by_position():
      "void"),
     (lambda: models.Model.from_file(ACST).initial_state(1e5, {"porosity": 0.4}), ValueError,
      "no input 'porosity'"),
+    (lambda: elastic().initial_state(float("nan")), ValueError, "stress is not finite"),
+    (lambda: elastic().initial_state(np.array([[1e5, 1.0, 0], [0, 1e5, 0], [0, 0, 1e5]])),
+     ValueError, "finite and symmetric"),
+    (lambda: elastic().update(1e5 * np.eye(3), np.zeros(0),
+                              np.array([[0, 1e-3, 0], [0, 0, 0], [0, 0, 0]])),
+     ValueError, "strain increment is not finite and symmetric"),
+    (lambda: elastic().update(np.repeat(1e5 * np.eye(3)[None], 2, 0), np.zeros((2, 0)),
+                              np.stack([np.zeros((3, 3)), np.full((3, 3), np.nan)])),
+     ValueError, "strain increment of point 1"),
+    (lambda: elastic().triaxial(1e5, 0.0), ValueError, "non-zero"),
+    (lambda: elastic().triaxial(1e5, 0.8), ValueError, "at most 0.6"),
+    (lambda: models.Model("linear_elastic", parameters={"youngs_modulus": "stiff",
+                                                        "poissons_ratio": 0.2}),
+     TypeError, "'youngs_modulus' must be a number"),
 ])
 def test_errors_name_what_is_wrong(call, kind, words):
     with pytest.raises(kind) as caught:

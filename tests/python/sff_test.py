@@ -142,6 +142,12 @@ def test_bad_arguments_are_named():
         sff.analyse(records[::2], **good)  # not C-ordered: no silent copy
     with pytest.raises(ValueError):  # no contact: the statistics are undefined
         sff.analyse(records[:0], **good)
-    with pytest.raises(ValueError, match="rows"):
-        sff.contacts(normal=np.eye(3), normal_force=[1, 2], tangential_force=np.zeros((3, 3)),
-                     branch=np.eye(3), body_a=[0, 1, 2], body_b=[1, 2, 0])
+    three = dict(normal=np.eye(3), normal_force=[1.0, 2.0, 3.0], tangential_force=np.zeros((3, 3)),
+                 branch=np.eye(3), body_a=[0, 1, 2], body_b=[1, 2, 0])
+    assert len(sff.contacts(**three)) == 3
+    for change, words in [({"normal_force": [1.0, 2.0]}, "normal_force must be of shape (3,)"),
+                          ({"normal": [0.0, 0.0, 1.0]}, "normal must be an array (n, 3)"),
+                          ({"tangential_force": np.zeros(3)}, "tangential_force must be of shape (3, 3)"),
+                          ({"body_a": [0.7, 1.9, 2.0]}, "body_a must hold integers")]:
+        with pytest.raises(ValueError, match=re.escape(words)):
+            sff.contacts(**{**three, **change})

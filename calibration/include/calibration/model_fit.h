@@ -64,6 +64,11 @@ class ModelFit {
                                 const std::vector<std::string>& run_paths) const = 0;
 };
 
+/// Throws std::invalid_argument naming a setting out of its range (starts 1..100, points
+/// 3..100000, max-strain-step [0, 0.1] (NaN refused), threads 1..1024): the one check of every
+/// front end.
+void check_settings(const FitSettings& settings);
+
 /// The fit of the model called `model` ("acst"; "contact_network", or "network"; any other
 /// registered name: the fit over its description) with these settings (checked: std::invalid_argument
 /// naming a bad one). Throws std::invalid_argument listing the registered models for an unknown

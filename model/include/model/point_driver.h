@@ -2,8 +2,9 @@
 // extension of one point through Behaviour::update alone, drained (the lateral strains found by
 // Newton on the consistent tangent) or undrained (constant volume, every strain prescribed). It is
 // what fe-check runs beside the element for a model that has no driver of its own, what
-// `sffcal point` runs for any model, and the reference of the CalculiX element decks; ACST (material_point.h) and the contact-network model (network_path.h) keep
-// theirs, which a fit differentiates with respect to the parameters.
+// `sffcal point` runs for any model, and the reference of the CalculiX element decks; ACST
+// (material_point.h) and the contact-network model (network_path.h) keep theirs, which a fit
+// differentiates with respect to the parameters.
 //
 // Conventions: compression positive, stress in Pa, tensor shear components.
 #pragma once
@@ -17,6 +18,10 @@
 #include "model/update_status.h"
 
 namespace model {
+
+/// The largest end axial strain of a path (either sign): past it the small-strain measure of the
+/// models means little.
+inline constexpr double kMaxTriaxialStrain = 0.6;
 
 /// How the lateral directions are held.
 enum class Drainage {
@@ -55,10 +60,20 @@ struct DriverPath {
 /// Drives one point of `behaviour` with the initial inputs `inputs` (laid out as the description's
 /// initial_inputs()) along the path. Stops with completed = false and a message where an update
 /// fails or Newton does not converge; throws std::invalid_argument for a path that is not
-/// (steps < 1, a tolerance not positive, a lateral stress not positive or not finite) and what
+/// (steps < 1, a tolerance not positive, a lateral stress not positive or not finite, an end
+/// strain of 0 or past kMaxTriaxialStrain in size) and what
 /// Behaviour::initial_state throws for inputs that are not physical.
 DriverPath drive_triaxial(const Behaviour& behaviour, const std::vector<double>& inputs,
                           const TriaxialPath& path);
+
+/// The triaxial invariants of a stress (compression positive) along z: p = tr sigma / 3 and
+/// q = sigma_zz - (sigma_xx + sigma_yy) / 2 [Pa].
+struct TriaxialStress {
+  double p = 0.0, q = 0.0;
+};
+inline TriaxialStress triaxial_stress(const Eigen::Matrix3d& stress) {
+  return {stress.trace() / 3.0, stress(2, 2) - 0.5 * (stress(0, 0) + stress(1, 1))};
+}
 
 /// "drained" or "undrained" (the spelling of configs and the command line).
 const char* to_string(Drainage drainage);
