@@ -61,6 +61,8 @@ CalibrationOutcome calibrate(const CalibrationRequest& request) {
   refuse_unread_settings(*fit, request);
   std::vector<TestData> tests = read_tests(request.runs, "fitted", request.settings);
   std::vector<TestData> held_out = read_tests(request.held_out, "held out", request.settings);
+  tests.insert(tests.end(), request.tests.begin(), request.tests.end());
+  held_out.insert(held_out.end(), request.held_out_tests.begin(), request.held_out_tests.end());
   refuse_shared_runs(tests, held_out);
   check_unique_names(tests, held_out);
   for (auto* list : {&tests, &held_out})

@@ -172,6 +172,20 @@ TestData test_data(const runfile::DemTest& dem, const std::string& path) {
   return t;
 }
 
+TestData test_from_tables(const std::string& name, const std::string& source,
+                          const std::map<std::string, std::vector<double>>& series,
+                          const std::map<std::string, std::vector<double>>& sff, double friction,
+                          TestPath path) {
+  TestData t;
+  t.name = name;
+  t.source = source;
+  t.friction = friction;
+  t.path = path;
+  fill_from_tables(t, series, source + " series", sff, source + " sff");
+  validate_test_data(t);
+  return t;
+}
+
 TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv,
                        const std::string& name, double friction, TestPath path) {
   TestData t;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -36,10 +37,12 @@ T setting(const std::string& key, const py::handle& value) {
     return py::cast<T>(value);
   } catch (const py::cast_error&) {
     throw py::type_error("calibrate: setting '" + key + "' must be " +
-                         (std::is_same_v<T, std::string> ? "a str"
-                          : std::is_same_v<T, bool>      ? "a bool"
-                          : std::is_integral_v<T>        ? "an int (>= 0)"
-                                                         : "a number") +
+                         (std::is_same_v<T, std::string>                ? "a str"
+                          : std::is_same_v<T, std::vector<std::string>> ? "a str or a list of str"
+                          : std::is_same_v<T, std::vector<double>>      ? "a sequence of numbers"
+                          : std::is_same_v<T, bool>                     ? "a bool"
+                          : std::is_integral_v<T>                       ? "an int (>= 0)"
+                                                                        : "a number") +
                          ", not " + std::string(py::str(value.get_type().attr("__name__"))));
   }
 }
@@ -82,13 +85,55 @@ calibration::FitSettings settings_from(const py::kwargs& given, std::vector<std:
   return s;
 }
 
-py::dict calibrate(const std::vector<std::string>& runs, const std::string& output,
-                   const std::string& model, const std::vector<std::string>& held_out,
+// A dict of columns: {name: 1-D sequence of numbers}.
+std::map<std::string, std::vector<double>> columns(const py::handle& table, const std::string& what) {
+  if (!py::isinstance<py::dict>(table))
+    throw py::type_error("calibrate: a test's '" + what + "' must be a dict of columns");
+  std::map<std::string, std::vector<double>> out;
+  for (const auto& item : py::cast<py::dict>(table)) {
+    const std::string name = py::str(item.first);
+    out[name] = setting<std::vector<double>>(what + "['" + name + "']", item.second);
+  }
+  return out;
+}
+
+// A test given as data: {"name", "series", "sff", "friction", "path" (drained_compression where
+// absent)}, its columns named as a run file's (calibration::test_from_tables).
+calibration::TestData test_from_dict(const py::dict& test) {
+  for (const auto& item : test) {
+    const std::string key = py::str(item.first);
+    if (key != "name" && key != "series" && key != "sff" && key != "friction" && key != "path")
+      throw std::invalid_argument("calibrate: a test has no key '" + key +
+                                  "' (its keys: name, series, sff, friction, path)");
+  }
+  for (const char* key : {"name", "series", "sff", "friction"})
+    if (!test.contains(key))
+      throw std::invalid_argument(std::string("calibrate: a test given as data needs '") + key + "'");
+  const std::string name = setting<std::string>("name", test["name"]);
+  return calibration::test_from_tables(
+      name, "test '" + name + "' given from Python", columns(test["series"], "series"),
+      columns(test["sff"], "sff"), setting<double>("friction", test["friction"]),
+      calibration::parse_test_path(test.contains("path") ? setting<std::string>("path", test["path"])
+                                                         : "drained_compression"));
+}
+
+// Run files (str) and tests given as data (dict), sorted into the request.
+void add_tests(const py::list& given, std::vector<std::string>& paths,
+               std::vector<calibration::TestData>& tests) {
+  for (const py::handle& item : given) {
+    if (py::isinstance<py::str>(item)) paths.push_back(py::cast<std::string>(item));
+    else if (py::isinstance<py::dict>(item)) tests.push_back(test_from_dict(py::cast<py::dict>(item)));
+    else throw py::type_error("calibrate: a test is a run file's path (str) or a dict of its curves");
+  }
+}
+
+py::dict calibrate(const py::list& runs, const std::string& output,
+                   const std::string& model, const py::list& held_out,
                    const std::function<void(const std::string&)>& progress,
                    const std::string& program_version, const py::kwargs& settings) {
   calibration::CalibrationRequest request;
-  request.runs = runs;
-  request.held_out = held_out;
+  add_tests(runs, request.runs, request.tests);
+  add_tests(held_out, request.held_out, request.held_out_tests);
   request.model = model;
   request.settings = settings_from(settings, request.given);
   // An exception of the Python callback is kept, not thrown through the fit (Ceres does not
@@ -128,7 +173,7 @@ py::dict calibrate(const std::vector<std::string>& runs, const std::string& outp
 PYBIND11_MODULE(_fit, m) {
   m.doc() = "sffcal's calibration (Ceres) from Python: sffcal.calibration";
   m.def("calibrate", &calibrate, py::arg("runs"), py::arg("output"), py::arg("model") = "acst",
-        py::arg("held_out") = std::vector<std::string>{}, py::arg("progress") = nullptr,
+        py::arg("held_out") = py::list(), py::arg("progress") = nullptr,
         py::arg("program_version") = SFFCAL_VERSION,
         "See sffcal.calibration.calibrate.");
 }

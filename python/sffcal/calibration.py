@@ -25,15 +25,23 @@ __all__ = ["calibrate"]
 
 
 def calibrate(runs, output, model="acst", held_out=(), progress=None, **settings):
-    """Fits `model` to the run files `runs` (each with /analysis/sff: `sffcal sff` first), predicts
-    the `held_out` run files, writes the outputs into the folder `output` (which must be new or
-    empty: nothing is overwritten) and returns a dict: summary, report (the solver's record),
-    usable (the solver's verdict), seconds, plot_hint, parameters_file and parameters ({name:
-    value}). `progress` receives a line per run read and per stage."""
+    """Fits `model` to the tests `runs`, predicts the `held_out` ones, writes the outputs into the
+    folder `output` (which must be new or empty: nothing is overwritten) and returns a dict:
+    summary, report (the solver's record), usable (the solver's verdict), seconds, plot_hint,
+    parameters_file and parameters ({name: value}). `progress` receives a line per run read and
+    per stage.
+
+    A test is a run file's path (with /analysis/sff: `sffcal sff` first) or its curves as a dict:
+    {"name": str, "series": {axial_strain, eta, volumetric_strain, void_ratio, p},
+     "sff": {axial_strain, a_c, a_n, m, eta (and coordination, lambda, a_t for the network
+     model)}, "friction": mu, "path": "drained_compression" (the default), "drained_extension",
+     "constant_p_compression", "undrained_compression" or "undrained_extension"}, each column a
+    sequence of numbers named as the run file's (compression positive, stresses in Pa)."""
     if os.path.exists(output) and (not os.path.isdir(output) or os.listdir(output)):
         raise ValueError(f"calibrate: {output} exists and is not an empty folder; give a new one")
     os.makedirs(output, exist_ok=True)
-    result = _calibrate(list(runs), output, model, list(held_out), progress, **settings)
+    result = _calibrate([r if isinstance(r, dict) else str(r) for r in runs], output, model,
+                        [r if isinstance(r, dict) else str(r) for r in held_out], progress, **settings)
     result["parameters_file"] = os.path.join(output, "parameters.json")
     result["parameters"] = models.Model.from_file(result["parameters_file"]).parameters
     return result

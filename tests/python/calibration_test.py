@@ -6,6 +6,8 @@ import json
 import os
 import subprocess
 
+import h5py
+import numpy as np
 import pytest
 
 import sffcal
@@ -36,6 +38,31 @@ def test_the_fit_from_python_equals_sffcal_calibrate(tmp_path):
     assert fit["parameters"]["youngs_modulus"] == mine["youngs_modulus"]["value"]
     assert sum(line.startswith("read ") for line in lines) == 2
     assert sffcal.calibrate is calibration.calibrate
+
+
+def curves(path):
+    """A run file's test as data: its series and SFF columns, named as the file names them."""
+    with h5py.File(path, "r") as f:
+        series = {k: f["series"][k][()] for k in ("axial_strain", "eta", "volumetric_strain",
+                                                    "void_ratio", "p")}
+        table = {k: f["analysis/sff"][k][()] for k in ("axial_strain", "a_c", "a_n", "m", "eta")}
+    return {"name": os.path.basename(path)[:-3], "series": series, "sff": table,
+            "friction": float(np.tan(np.radians(30)))}
+
+
+def test_curves_given_as_data_fit_as_their_run_files(tmp_path):
+    """The schema-1 reference runs shear at tan 30 deg, which their stored config gives."""
+    from_files = calibration.calibrate(RUNS, str(tmp_path / "files"), model="acst", stages="csl")
+    from_data = calibration.calibrate([curves(r) for r in RUNS], str(tmp_path / "data"),
+                                      model="acst", stages="csl")
+    assert from_data["parameters"] == from_files["parameters"]
+    broken = curves(RUNS[0])
+    del broken["series"]["eta"]
+    with pytest.raises(RuntimeError, match="missing column 'eta'"):
+        calibration.calibrate([broken], str(tmp_path / "broken"), model="acst", stages="csl")
+    with pytest.raises(ValueError, match="needs 'friction'"):
+        calibration.calibrate([{k: v for k, v in curves(RUNS[0]).items() if k != "friction"}],
+                              str(tmp_path / "nofriction"), model="acst", stages="csl")
 
 
 @pytest.mark.parametrize("settings,words", [

@@ -13,6 +13,8 @@ namespace calibration {
 struct CalibrationRequest {
   std::vector<std::string> runs;      ///< run files with /analysis/sff, fitted
   std::vector<std::string> held_out;  ///< run files predicted with the fitted values, not fitted
+  /// Tests given as data (test_from_tables), fitted and held out after the run files'.
+  std::vector<TestData> tests, held_out_tests;
   std::string model = "acst";         ///< acst | network (contact_network) | any registered model
   FitSettings settings;               ///< progress: also a line per run read
   /// The settings the caller set (kFitSettingNames); one the model's fit does not read is refused

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,15 @@ TestData test_data(const runfile::DemTest& dem, const std::string& path);
 TestData read_csv_pair(const std::string& series_csv, const std::string& sff_csv,
                        const std::string& name, double friction,
                        TestPath path = TestPath::kDrainedCompression);
+
+/// A test from its columns, named as a run file's (series: axial_strain, eta, volumetric_strain,
+/// void_ratio, p; sff: axial_strain, a_c, a_n, m, eta, and coordination, lambda, a_t together where
+/// given), e.g. curves given from Python; `source` says where they came from in messages. Throws
+/// std::runtime_error naming a missing column or what validate_test_data refuses.
+TestData test_from_tables(const std::string& name, const std::string& source,
+                          const std::map<std::string, std::vector<double>>& series,
+                          const std::map<std::string, std::vector<double>>& sff, double friction,
+                          TestPath path);
 
 /// Throws std::runtime_error naming the name two of the tests share (a fit's output files would
 /// overwrite each other): for a front end to call before a long fit.
