@@ -176,6 +176,8 @@ TestData test_from_tables(const std::string& name, const std::string& source,
                           const std::map<std::string, std::vector<double>>& series,
                           const std::map<std::string, std::vector<double>>& sff, double friction,
                           TestPath path) {
+  if (!(friction >= 0.0) || !std::isfinite(friction))
+    throw std::runtime_error(source + ": the friction must be a number >= 0 (0: unknown)");
   TestData t;
   t.name = name;
   t.source = source;

@@ -60,6 +60,9 @@ def test_curves_given_as_data_fit_as_their_run_files(tmp_path):
     del broken["series"]["eta"]
     with pytest.raises(RuntimeError, match="missing column 'eta'"):
         calibration.calibrate([broken], str(tmp_path / "broken"), model="acst", stages="csl")
+    with pytest.raises(RuntimeError, match="friction must be a number"):
+        calibration.calibrate([{**curves(RUNS[0]), "friction": float("nan")}],
+                              str(tmp_path / "nan"), model="acst", stages="csl")
     with pytest.raises(ValueError, match="needs 'friction'"):
         calibration.calibrate([{k: v for k, v in curves(RUNS[0]).items() if k != "friction"}],
                               str(tmp_path / "nofriction"), model="acst", stages="csl")
