@@ -134,11 +134,13 @@ def read_dat(path):
 
 
 def read_curve(path):
-    """A curve CSV of `sffcal point` (its first line a comment)."""
+    """A curve CSV of `sffcal point` (its first line a comment): the numbers compared, and each
+    update's status as written."""
     with open(path) as f:
         lines = [line for line in f if not line.startswith("#")]
-    return [{k: float(v) for k, v in row.items() if k in
-             ("axial_strain", "volumetric_strain", "p", "q", "eta")} for row in csv.DictReader(lines)]
+    return [{k: (v if k == "status" else float(v)) for k, v in row.items() if k in
+             ("axial_strain", "volumetric_strain", "p", "q", "eta", "status")}
+            for row in csv.DictReader(lines)]
 
 
 def main():
@@ -206,9 +208,7 @@ def main():
         sys.exit(f"single_element: the driver (sffcal point, exit {code}) did not complete; see "
                  f"{out}/driver.log")
     driver = read_curve(reference)[1:]
-    with open(reference) as f:
-        statuses = [row["status"] for row in csv.DictReader(line for line in f if not line.startswith("#"))]
-    unreliable = sum(status != "ok" for status in statuses)
+    unreliable = sum(row["status"] != "ok" for row in driver)
     print(f"ccx: {len(ccx)} increments, {cuts} cut(s) asked by the UMAT through PNEWDT, Newton "
           f"iterations per increment: mean {sum(iterations) / max(len(iterations), 1):.2f}, "
           f"max {max(iterations, default=0)}; driver: {unreliable} update(s) not ok")

@@ -201,15 +201,18 @@ class PyModel {
           "(3, 3) for one point, or (n, 3, 3), (n, " + std::to_string(m) + ") and (n, 3, 3) for n");
     // Every point's stress and increment finite and symmetric, every state finite: a model reads
     // only one triangle of a tensor, and would integrate NaN as numbers.
+    // The message is built only for the point that fails: the loop runs over the whole batch.
+    const auto refuse = [single](const char* what, py::ssize_t k, const char* problem) {
+      throw std::invalid_argument(std::string("the ") + what +
+                                  (single ? std::string() : " of point " + std::to_string(k)) +
+                                  " is not " + problem);
+    };
     for (py::ssize_t k = 0; k < n; ++k) {
-      const std::string which = single ? std::string() : " of point " + std::to_string(k);
-      if (!finite_symmetric(stress.data() + 9 * k))
-        throw std::invalid_argument("the stress" + which + " is not finite and symmetric");
+      if (!finite_symmetric(stress.data() + 9 * k)) refuse("stress", k, "finite and symmetric");
       if (!finite_symmetric(increment.data() + 9 * k))
-        throw std::invalid_argument("the strain increment" + which + " is not finite and symmetric");
+        refuse("strain increment", k, "finite and symmetric");
       for (py::ssize_t j = 0; j < m; ++j)
-        if (!std::isfinite(state.data()[m * k + j]))
-          throw std::invalid_argument("the state" + which + " is not finite");
+        if (!std::isfinite(state.data()[m * k + j])) refuse("state", k, "finite");
     }
     std::vector<py::ssize_t> lead = single ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{n};
     const auto with = [&](std::vector<py::ssize_t> tail) {

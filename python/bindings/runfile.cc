@@ -21,21 +21,26 @@ namespace sffcal_python {
 namespace {
 
 // A numpy array over the elements of `values`, which it takes over (freed with the array).
-template <typename T>
-py::array_t<T> adopt(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+// A numpy array of Element over the records of `values`, which it takes over (freed with the
+// array): one record per row, `columns` elements each (1: a 1-D array of records).
+template <typename Element, typename T>
+py::array_t<Element> adopt(std::vector<T>&& values, py::ssize_t columns = 1) {
+  static_assert(sizeof(T) % sizeof(Element) == 0, "a record is a whole number of elements");
   auto* owned = new std::vector<T>(std::move(values));
   py::capsule free(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>(shape, owned->data(), free);
+  const auto rows = static_cast<py::ssize_t>(owned->size());
+  std::vector<py::ssize_t> shape = {rows};
+  if (columns > 1) shape.push_back(columns);
+  return py::array_t<Element>(shape, reinterpret_cast<Element*>(owned->data()), free);
 }
 
 template <typename T>
 py::array_t<T> adopt(std::vector<T>&& values) {
-  const auto n = static_cast<py::ssize_t>(values.size());
-  return adopt(std::move(values), {n});
+  return adopt<T, T>(std::move(values));
 }
 
-runfile::Snapshot read(const std::string& path, int index) {
-  const runfile::RunFile file = runfile::RunFile::open(path);
+// Snapshot `index` of an open run file; IndexError naming the count where it has none.
+runfile::Snapshot read(const runfile::RunFile& file, const std::string& path, int index) {
   if (index < 0 || index >= file.num_snapshots())
     throw py::index_error(path + " has " + std::to_string(file.num_snapshots()) +
                           " snapshots: no snapshot " + std::to_string(index));
@@ -43,16 +48,14 @@ runfile::Snapshot read(const std::string& path, int index) {
 }
 
 py::dict read_snapshot(const std::string& path, int index) {
-  runfile::Snapshot s = read(path, index);
+  runfile::Snapshot s = read(runfile::RunFile::open(path), path, index);
   py::dict out;
   out["step"] = s.step;
   out["time"] = s.time;
   out["axial_strain"] = s.axial_strain;
-  const auto spheres = static_cast<py::ssize_t>(s.spheres.size());
-  std::vector<double> flat;
-  flat.reserve(4 * s.spheres.size());
-  for (const auto& x : s.spheres) flat.insert(flat.end(), x.begin(), x.end());
-  out["spheres"] = adopt(std::move(flat), {spheres, py::ssize_t{4}});
+  // x, y, z, radius of each sphere: a record of four doubles, a row of the array.
+  static_assert(sizeof(s.spheres[0]) == 4 * sizeof(double), "a sphere record is four doubles");
+  out["spheres"] = adopt<double>(std::move(s.spheres), 4);
   out["sphere_body"] = adopt(std::move(s.sphere_body));
   out["particles"] = adopt(std::move(s.particles));
   out["contacts"] = adopt(std::move(s.contacts));
@@ -61,9 +64,9 @@ py::dict read_snapshot(const std::string& path, int index) {
 }
 
 py::dict snapshot_input(const std::string& path, int index) {
-  const runfile::RunPhysics physics = runfile::RunFile::open(path).metadata().physics;
-  runfile::Snapshot s = read(path, index);
-  const sff::SnapshotInput in = sff::snapshot_input(s, physics);
+  const runfile::RunFile file = runfile::RunFile::open(path);
+  runfile::Snapshot s = read(file, path, index);
+  const sff::SnapshotInput in = sff::snapshot_input(s, file.metadata().physics);
   py::dict out;
   out["volume"] = in.volume;
   out["solid_volume"] = in.solid_volume;
