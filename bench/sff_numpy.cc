@@ -1,7 +1,6 @@
 // The SFF analysis of one snapshot timed in C++ (sff::analyse_snapshot), the reference of the
 // Python API's (bench/python/sff_numpy.py writes the contacts as raw records, runs both alternated
-// on them and compares). The input as the binding checks it (sff::check_snapshot_input), then the
-// analysis alone is timed.
+// on them and compares). The analysis checks its input as it does for the binding.
 //
 //   build/bench/sff_numpy CONTACTS.bin BODIES VOLUME SOLID_VOLUME E MU REPEATS   # one time [s] a line
 #include <chrono>
@@ -37,7 +36,6 @@ int main(int argc, char** argv) {
     in.solid_volume = std::stod(argv[4]);
     in.youngs_modulus = std::stod(argv[5]);
     in.friction = std::stod(argv[6]);
-    sff::check_snapshot_input(in);
     double eta = 0.0;
     for (int r = 0, repeats = std::stoi(argv[7]); r < repeats; ++r) {
       const auto t0 = std::chrono::steady_clock::now();

@@ -1,7 +1,7 @@
 // sffcal.sff (python/sffcal/sff.py re-exports it): the stress-force-fabric analysis of contacts
 // given as numpy arrays (sff/analysis.h, sff-theory.md): one structured array of the run file's
 // contact records (CONTACT_DTYPE, laid out as runfile::ContactRecord), read in place, without a
-// copy. Checked first (sff::check_snapshot_input): a bad contact is a ValueError naming it.
+// copy. sff::analyse_snapshot checks them: a bad contact is a ValueError naming it.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -59,7 +59,6 @@ Input make_input(const py::array& contacts, double volume, double solid_volume, 
     for (py::ssize_t k = 0; k < c.shape(0); ++k)
       in.input.centroids.emplace_back(c.at(k, 0), c.at(k, 1), c.at(k, 2));
   }
-  sff::check_snapshot_input(in.input);
   return in;
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contact_stress_pass.h"
 #include "force_moments.h"
 #include "sff/invariants.h"
 #include "sff/sff_equation.h"
@@ -68,11 +69,91 @@ PrincipalAxis principal_axis(const Eigen::Matrix3d& t) {
   return p;
 }
 
+namespace {
+
+// Whether one contact of the input is valid (analyse_snapshot): arithmetic on the record without
+// branches, cheap beside the stress that the same pass sums.
+inline bool contact_is_valid(const ContactRecord& c, int num_bodies) {
+  // v * 0 is 0 for a finite v and NaN otherwise; the sum of these tests every number at once
+  // (summing the values themselves could overflow), added as a tree to keep the chain short.
+  const auto z = [](double v) { return v * 0.0; };
+  const double zero =
+      ((z(c.point[0]) + z(c.point[1])) + (z(c.point[2]) + z(c.branch[0]))) +
+      ((z(c.branch[1]) + z(c.branch[2])) + (z(c.overlap) + z(c.normal_force))) +
+      (z(c.tangential_force[0]) + (z(c.tangential_force[1]) + z(c.tangential_force[2])));
+  const double length_squared =
+      c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2];
+  const bool wall = c.wall >= 0;
+  const bool a_ok = wall ? c.body_a == -1
+                         : (c.body_a >= 0) & (c.body_a < num_bodies) & (c.body_a != c.body_b);
+  return (zero == 0.0) & (std::abs(length_squared - 1.0) <= 2e-6) & (c.body_b >= 0) &
+         (c.body_b < num_bodies) & a_ok;
+}
+
+// What is wrong with a contact that contact_is_valid refused, in words.
+std::string contact_problem(const ContactRecord& c, int num_bodies) {
+  const double values[] = {c.point[0], c.point[1], c.point[2], c.branch[0], c.branch[1],
+                           c.branch[2], c.overlap, c.normal_force, c.tangential_force[0],
+                           c.tangential_force[1], c.tangential_force[2]};
+  for (double v : values)
+    if (!std::isfinite(v)) return "a number is not finite";
+  const double length_squared = normal_of(c).squaredNorm();  // |n| within 1e-6 of 1
+  if (!(std::abs(length_squared - 1.0) <= 2e-6))
+    return "the normal is not a unit vector (length " +
+           sffcal::format_number(std::sqrt(length_squared)) + ")";
+  if (c.body_b < 0 || c.body_b >= num_bodies)
+    return "body_b " + std::to_string(c.body_b) + " is not in [0, num_bodies)";
+  if (c.wall >= 0) return "a wall contact's body_a must be -1";
+  if (c.body_a < 0 || c.body_a >= num_bodies || c.body_a == c.body_b)
+    return "body_a " + std::to_string(c.body_a) +
+           " is not another body in [0, num_bodies) (or give the wall's index)";
+  return {};
+}
+
+}  // namespace
+
+namespace {
+
+// The input's checks but the contacts' (analyse_snapshot).
+void check_snapshot_scalars(const SnapshotInput& in) {
+  const auto number = sffcal::format_number;
+  const auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  require(in.volume > 0.0 && std::isfinite(in.volume),
+          "the volume must be positive [m^3], not " + number(in.volume));
+  require(in.solid_volume > 0.0 && in.solid_volume <= in.volume,
+          "the solid volume must be positive and at most the volume [m^3], not " +
+              number(in.solid_volume));
+  require(in.num_bodies > 0, "the number of bodies must be positive");
+  require(in.youngs_modulus > 0.0 && std::isfinite(in.youngs_modulus),
+          "Young's modulus must be positive [Pa], not " + number(in.youngs_modulus));
+  require(in.friction > 0.0 && std::isfinite(in.friction),
+          "the friction coefficient must be positive, not " + number(in.friction));
+  require(in.wall_stress.allFinite(), "the wall stress must be finite");
+  require(in.centroids.empty() || in.centroids.size() == static_cast<std::size_t>(in.num_bodies),
+          "give one centroid per body (" + std::to_string(in.num_bodies) + "), not " +
+              std::to_string(in.centroids.size()));
+  for (const Eigen::Vector3d& x : in.centroids) require(x.allFinite(), "a centroid is not finite");
+}
+
+[[noreturn]] void refuse_contact(const SnapshotInput& in, std::size_t k) {
+  throw std::invalid_argument("contact " + std::to_string(k) + ": " +
+                              contact_problem(in.contacts[k], in.num_bodies));
+}
+
+}  // namespace
+
 SnapshotAnalysis analyse_snapshot(const SnapshotInput& in) {
-  if (!(in.volume > 0.0 && in.solid_volume > 0.0 && in.num_bodies > 0))
-    throw StatisticsError("analyse_snapshot: volume, solid volume and body count must be positive");
+  check_snapshot_scalars(in);
   SnapshotAnalysis a;
-  a.stress = contact_stress(in.contacts, in.volume);
+  // The contacts are checked in the stress's pass, before anything indexes by their body ids.
+  std::size_t first_bad = in.contacts.size();
+  a.stress = internal::contact_stress_pass(
+      in.contacts, in.volume, [&](std::size_t k, const ContactRecord& c) {
+        if (!contact_is_valid(c, in.num_bodies) && first_bad == in.contacts.size()) first_bad = k;
+      });
+  if (first_bad < in.contacts.size()) refuse_contact(in, first_bad);
   const StressInvariants inv = triaxial_invariants(a.stress);
   a.p = inv.p;
   a.q = inv.q;
@@ -140,73 +221,6 @@ SnapshotAnalysis analyse_snapshot(const SnapshotInput& in) {
   a.sff_error = (predicted - a.stress).norm() / norm;
   a.branch_ratio = branch_remainder(in.contacts, in.volume).norm() / norm;
   return a;
-}
-
-namespace {
-
-// What is wrong with one contact given as input (check_snapshot_input), empty where nothing is;
-// with `describe` false, any non-empty text (the fast test of the usual, valid contact).
-std::string contact_problem(const ContactRecord& c, int num_bodies, bool describe) {
-  const double values[] = {c.point[0], c.point[1], c.point[2], c.branch[0], c.branch[1],
-                           c.branch[2], c.overlap, c.normal_force, c.tangential_force[0],
-                           c.tangential_force[1], c.tangential_force[2]};
-  // A NaN or an infinity makes the sum non-finite: one test for the usual contact, then each
-  // value (a finite sum past 1e308 is no error).
-  double sum = 0.0;
-  for (double v : values) sum += v;
-  if (!std::isfinite(sum))
-    for (double v : values)
-      if (!std::isfinite(v)) return "a number is not finite";
-  const double length_squared = normal_of(c).squaredNorm();  // |n| within 1e-6 of 1
-  if (!(std::abs(length_squared - 1.0) <= 2e-6))
-    return describe ? "the normal is not a unit vector (length " +
-                          sffcal::format_number(std::sqrt(length_squared)) + ")"
-                    : "normal";
-  if (c.body_b < 0 || c.body_b >= num_bodies)
-    return describe ? "body_b " + std::to_string(c.body_b) + " is not in [0, num_bodies)" : "b";
-  if (c.wall >= 0 && c.body_a != -1) return "a wall contact's body_a must be -1";
-  if (c.wall < 0 && (c.body_a < 0 || c.body_a >= num_bodies || c.body_a == c.body_b))
-    return describe ? "body_a " + std::to_string(c.body_a) +
-                          " is not another body in [0, num_bodies) (or give the wall's index)"
-                    : "a";
-  return {};
-}
-
-}  // namespace
-
-void check_snapshot_input(const SnapshotInput& in) {
-  const auto number = sffcal::format_number;
-  const auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument(what);
-  };
-  require(in.volume > 0.0 && std::isfinite(in.volume),
-          "the volume must be positive [m^3], not " + number(in.volume));
-  require(in.solid_volume > 0.0 && in.solid_volume <= in.volume,
-          "the solid volume must be positive and at most the volume [m^3], not " +
-              number(in.solid_volume));
-  require(in.num_bodies > 0, "the number of bodies must be positive");
-  require(in.youngs_modulus > 0.0 && std::isfinite(in.youngs_modulus),
-          "Young's modulus must be positive [Pa], not " + number(in.youngs_modulus));
-  require(in.friction > 0.0 && std::isfinite(in.friction),
-          "the friction coefficient must be positive, not " + number(in.friction));
-  require(in.wall_stress.allFinite(), "the wall stress must be finite");
-  require(in.centroids.empty() || in.centroids.size() == static_cast<std::size_t>(in.num_bodies),
-          "give one centroid per body (" + std::to_string(in.num_bodies) + "), not " +
-              std::to_string(in.centroids.size()));
-  for (const Eigen::Vector3d& x : in.centroids) require(x.allFinite(), "a centroid is not finite");
-  // Every contact is tested in one parallel pass (it costs a tenth of the analysis on one
-  // thread); the first that fails is then described, so the message names the same contact
-  // whatever the number of threads.
-  const long n = static_cast<long>(in.contacts.size());
-  long first_bad = n;
-#pragma omp parallel for reduction(min : first_bad) schedule(static)
-  for (long k = 0; k < n; ++k)
-    if (!contact_problem(in.contacts[static_cast<std::size_t>(k)], in.num_bodies, false).empty())
-      first_bad = std::min(first_bad, k);
-  if (first_bad < n)
-    throw std::invalid_argument(
-        "contact " + std::to_string(first_bad) + ": " +
-        contact_problem(in.contacts[static_cast<std::size_t>(first_bad)], in.num_bodies, true));
 }
 
 SnapshotChecks check_snapshot(const SnapshotInput& in, const SnapshotAnalysis& a,

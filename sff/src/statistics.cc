@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "contact_stress_pass.h"
 #include "force_moments.h"
 #include "sff/tensors.h"
 
@@ -25,11 +26,7 @@ StressInvariants triaxial_invariants(const Eigen::Matrix3d& sigma) {
 
 Eigen::Matrix3d contact_stress(ContactSpan contacts, double volume) {
   if (!(volume > 0.0)) throw StatisticsError("contact_stress: the volume must be positive");
-  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
-  for_each_body_contact(contacts, [&](const ContactRecord& c, double w) {
-    sum.noalias() += (w * branch_of(c)) * force_of(c).transpose();
-  });
-  return sym(sum) / volume;
+  return internal::contact_stress_pass(contacts, volume, [](std::size_t, const ContactRecord&) {});
 }
 
 Eigen::Matrix3d particle_stress(ContactSpan contacts, const std::vector<Eigen::Vector3d>& centroids,

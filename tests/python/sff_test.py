@@ -117,6 +117,7 @@ def test_the_checks_are_seeded_and_sffcal_sffs(run):
 @pytest.mark.parametrize("change,words", [
     (lambda r: r["normal"].__setitem__(3, [1.0, 1.0, 0.0]), "contact 3: the normal is not a unit"),
     (lambda r: r["normal_force"].__setitem__(7, np.nan), "contact 7: a number is not finite"),
+    (lambda r: r["point"].__setitem__(5, [0.0, -np.inf, 0.0]), "contact 5: a number is not finite"),
     (lambda r: r["body_b"].__setitem__(2, 10 ** 9), "contact 2: body_b 1000000000"),
     (lambda r: r["body_a"].__setitem__(4, r["body_b"][4]), "contact 4: body_a"),
 ])
@@ -127,6 +128,15 @@ def test_a_bad_contact_is_named(change, words):
         sff.analyse(records, volume=1e-3, solid_volume=6e-4, num_bodies=bodies,
                     youngs_modulus=1e8, friction=0.5)
     assert words in str(caught.value)
+
+
+def test_large_finite_numbers_are_no_error():
+    # The check adds v * 0 over a record's numbers: finite values whose sum would overflow pass.
+    records, bodies = isotropic_contacts(100)
+    records["point"][9] = [1.7e308, 1.7e308, 1.7e308]
+    out = sff.analyse(records, volume=1e-3, solid_volume=6e-4, num_bodies=bodies,
+                      youngs_modulus=1e8, friction=0.5)
+    assert np.isfinite(out["eta_sff"])
 
 
 def test_bad_arguments_are_named():

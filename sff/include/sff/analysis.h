@@ -89,15 +89,14 @@ struct SnapshotAnalysis {
   Eigen::Matrix3d mobilisation = Eigen::Matrix3d::Zero();  ///< M
 };
 
-/// Throws StatisticsError where a statistic is undefined (no contacts, no force).
-SnapshotAnalysis analyse_snapshot(const SnapshotInput& input);
-
-/// Checks an input that did not come from a run file (whose reader checks its snapshots:
+/// Checks its input first, as it may not come from a run file (whose reader checks its snapshots:
 /// runfile/src/snapshot_check.h), e.g. contacts given from Python: positive volumes, body count,
 /// modulus and friction; every number finite; unit normals (to 1e-6); body ids in [0, num_bodies)
-/// and a wall contact's A a wall (body_a = -1, wall >= 0); one centroid per body where given.
-/// Throws std::invalid_argument naming the first contact and field that is not.
-void check_snapshot_input(const SnapshotInput& input);
+/// and a wall contact's A a wall (body_a = -1, wall >= 0); one centroid per body where given. The
+/// contacts are checked in the stress's pass over them, so the check costs almost nothing.
+/// Throws std::invalid_argument naming the first contact and field that is not valid, and
+/// StatisticsError where a statistic is undefined (no contacts, no force).
+SnapshotAnalysis analyse_snapshot(const SnapshotInput& input);
 
 /// The statistical checks of sff-theory.md §6 for one snapshot, and the strong/weak split.
 struct SnapshotChecks {
