@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
 build=${2:-build-fuzz}
-targets=(config csv_packing parameter_file umat run_file checkpoint)
+targets=(config csv_packing parameter_file umat run_file checkpoint import)
 
 # Never a build folder of the normal (gcc) build: a fuzz build folder is one of its own.
 if [ -f "$build/CMakeCache.txt" ] && ! grep -q '^SFFCAL_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then

@@ -221,7 +221,7 @@ int info_command(const std::string& run_path) {
   std::printf("series: %zu rows of %zu columns; snapshots: %d; checkpoint: %s\n",
               file.series_length(), file.series_names().size(), file.num_snapshots(),
               file.has_checkpoint() ? "yes" : "no");
-  for (const char* note : {"preparation", "specimen", "summary"}) {  // schema 1 kept a summary note
+  for (const char* note : {"import", "preparation", "specimen", "summary"}) {  // schema 1 kept a summary note
     const std::string text = file.read_note(note);
     if (!text.empty()) std::printf("%s: %s\n", note, text.c_str());
   }

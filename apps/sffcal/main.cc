@@ -11,6 +11,7 @@
 
 #include "dem_commands.h"
 #include "finite_options.h"
+#include "import_command.h"
 #include "output_guard.h"
 #include "sff_command.h"
 #ifdef SFFCAL_HAVE_FE_CHECK
@@ -64,6 +65,14 @@ int main(int argc, char** argv) {
   CLI::App* vtk = app.add_subcommand("vtk", "Export the snapshots of a run file for ParaView");
   vtk->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
   vtk->add_option("-o,--output", out_path, "folder for the VTU/PVD files")->required();
+
+  std::string description_path;
+  CLI::App* import = app.add_subcommand(
+      "import", "Turn another code's run (YADE, LAMMPS, LIGGGHTS: dumps, a series table and "
+                "import.toml; docs/import.md) into a run file");
+  import->add_option("description", description_path, "import.toml")->required()->check(CLI::ExistingFile);
+  import->add_option("-o,--output", out_path, "run file to write (HDF5)")->required();
+  import->add_flag("--force", force, force_help);
 
   CLI::App* info = app.add_subcommand("info", "Summarise a run or specimen file");
   info->add_option("run", run_path, "run file")->required()->check(CLI::ExistingFile);
@@ -252,6 +261,10 @@ int main(int argc, char** argv) {
     if (vtk->parsed()) {
       sffcal::check_output_folder(out_path);
       return sffcal::vtk_command(run_path, out_path);
+    }
+    if (import->parsed()) {
+      sffcal::check_new_run_file(out_path, {description_path}, force, false);
+      return sffcal::import_command(description_path, sffcal::RunFileTarget(out_path, false));
     }
     if (info->parsed()) return sffcal::info_command(run_path);
     if (sff->parsed()) {

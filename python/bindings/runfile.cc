@@ -60,6 +60,9 @@ py::dict read_snapshot(const std::string& path, int index) {
   out["particles"] = adopt(std::move(s.particles));
   out["contacts"] = adopt(std::move(s.contacts));
   out["walls"] = adopt(std::move(s.walls));
+  // A periodic snapshot's cell (an imported run): lower and upper corners; (0, 3) where walls are.
+  static_assert(sizeof(s.periodic_cell[0]) == 3 * sizeof(double), "a corner is three doubles");
+  out["periodic_cell"] = adopt<double>(std::move(s.periodic_cell), 3);
   return out;
 }
 
@@ -100,11 +103,12 @@ void bind_runfile(py::module_& m) {
   m.def("read_snapshot", &read_snapshot, py::arg("path"), py::arg("index"),
         "Snapshot `index` of a run file, checked as every reader of the project checks it: a dict "
         "of step, time, axial_strain and the arrays contacts (CONTACT_DTYPE), particles "
-        "(PARTICLE_DTYPE), walls (WALL_DTYPE), spheres (n, 4: x, y, z, radius [m]) and "
-        "sphere_body (the body of each sphere).");
+        "(PARTICLE_DTYPE), walls (WALL_DTYPE), spheres (n, 4: x, y, z, radius [m]), "
+        "sphere_body (the body of each sphere) and periodic_cell (the lower and upper corners "
+        "[m] of an imported periodic run's cell, shape (2, 3); (0, 3) where walls bound it).");
   m.def("snapshot_input", &snapshot_input, py::arg("path"), py::arg("index"),
         "The arguments of sffcal.sff.analyse for snapshot `index`, as `sffcal sff` builds them: "
-        "contacts, volume (the walls' box), solid_volume (the clumps' spheres), num_bodies, "
+        "contacts, volume (the walls' box or the periodic cell), solid_volume (the clumps' spheres), num_bodies, "
         "youngs_modulus and friction (/physics), wall_stress, centroids.");
 }
 

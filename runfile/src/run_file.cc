@@ -336,6 +336,9 @@ void RunFile::write_snapshot(const Snapshot& s) {
     h5::write_dataset(g, "contacts", h5::contact_record_type().get(), s.contacts.data(),
                       s.contacts.size());
     h5::write_dataset(g, "walls", h5::wall_record_type().get(), s.walls.data(), s.walls.size());
+    if (!s.periodic_cell.empty())
+      h5::write_dataset(g, "periodic_cell", H5T_NATIVE_DOUBLE, s.periodic_cell.data(),
+                        s.periodic_cell.size(), 3);
     impl_->publish(g, snapshot_name(index));
     return 0;
   });
@@ -370,7 +373,14 @@ Snapshot RunFile::read_snapshot(int index) const {
     s.sphere_body = h5::read_dataset<std::int64_t>(g, "sphere_body", H5T_NATIVE_INT64);
     s.contacts = h5::read_dataset<ContactRecord>(g, "contacts", h5::contact_record_type().get());
     s.walls = h5::read_dataset<WallRecord>(g, "walls", h5::wall_record_type().get());
-    check_snapshot(s, flat.size());
+    std::size_t cell_values = 0;
+    if (h5::exists(g, "periodic_cell")) {
+      const auto cell = h5::read_dataset<double>(g, "periodic_cell", H5T_NATIVE_DOUBLE);
+      cell_values = cell.size();
+      for (std::size_t k = 0; k + 3 <= cell.size(); k += 3)
+        s.periodic_cell.push_back({cell[k], cell[k + 1], cell[k + 2]});
+    }
+    check_snapshot(s, flat.size(), cell_values);
     return s;
   });
 }

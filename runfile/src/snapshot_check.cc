@@ -24,7 +24,17 @@ std::string record(const char* kind, std::size_t index) {
 
 }  // namespace
 
-void check_snapshot(const Snapshot& s, std::size_t sphere_values) {
+void check_snapshot(const Snapshot& s, std::size_t sphere_values, std::size_t cell_values) {
+  if (cell_values != 0 || !s.periodic_cell.empty()) {
+    if (cell_values != 6 && !(cell_values == 0 && s.periodic_cell.size() == 2))
+      refuse("'periodic_cell' has " + std::to_string(cell_values) +
+             " values, not 6 (the lower and upper corners)");
+    for (const auto& corner : s.periodic_cell) require_finite(corner, "'periodic_cell'");
+    for (int a = 0; a < 3; ++a)
+      if (!(s.periodic_cell[1][a] > s.periodic_cell[0][a]))
+        refuse("'periodic_cell' has an upper corner not above its lower one");
+    if (!s.walls.empty()) refuse("a periodic snapshot also has walls");
+  }
   if (sphere_values % 4 != 0)
     refuse("'spheres' has " + std::to_string(sphere_values) + " values, not 4 per sphere");
   if (s.sphere_body.size() != s.spheres.size())

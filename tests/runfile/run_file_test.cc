@@ -282,12 +282,24 @@ TEST(RunFileContract, AnInconsistentSnapshotIsRefusedNamingTheRecord) {
   cases.back().first.walls[3].axis = 5;
   cases.emplace_back(two_body_snapshot(), "'sphere_body' has 2 entries for 3 spheres");
   cases.back().first.sphere_body.pop_back();
+  // A periodic cell (an imported run) comes without walls, with its upper corner above its lower.
+  cases.emplace_back(two_body_snapshot(), "a periodic snapshot also has walls");
+  cases.back().first.periodic_cell = {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}};
+  cases.emplace_back(two_body_snapshot(), "'periodic_cell' has an upper corner not above");
+  cases.back().first.periodic_cell = {{0.0, 0.0, 0.0}, {1.0, 0.0, 1.0}};
+  cases.back().first.walls.clear();
+  cases.back().first.contacts.pop_back();
+  cases.emplace_back(two_body_snapshot(), "'periodic_cell' has 3 values, not 6");
+  cases.back().first.periodic_cell = {{0.0, 0.0, 0.0}};
+  cases.back().first.walls.clear();
+  cases.back().first.contacts.pop_back();
   {
     RunFile file = RunFile::create(path, sample_metadata(), kTestSeries);
     for (const auto& c : cases) file.write_snapshot(c.first);
   }
   const RunFile file = RunFile::open(path);
   EXPECT_EQ(file.read_snapshot(0).contacts.size(), 2u);
+  EXPECT_TRUE(file.read_snapshot(0).periodic_cell.empty());
   for (int k = 1; k < static_cast<int>(cases.size()); ++k)
     expect_error([&] { file.read_snapshot(k); },
                  {path, "snapshot " + std::to_string(k), cases[static_cast<std::size_t>(k)].second});

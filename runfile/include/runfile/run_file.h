@@ -12,7 +12,8 @@
 //   /snapshots/<nnnnnn>/  attributes step, time, axial_strain; datasets
 //                     particles (compound ParticleRecord), spheres (N_s x 4: x, y, z, radius),
 //                     sphere_body (N_s, body id), contacts (compound ContactRecord),
-//                     walls (compound WallRecord)
+//                     walls (compound WallRecord); periodic_cell (2 x 3: lower and upper
+//                     corners) where the specimen is periodic (an imported run)
 //   /checkpoint/      an engine state in the writer's layout (StateWriter), with the series
 //                     length and snapshot count at that moment
 //   /analysis/<table>/<column>  tables of analysis results
@@ -100,6 +101,9 @@ struct Snapshot {
   std::vector<std::int64_t> sphere_body;       ///< body id of each sphere
   std::vector<ContactRecord> contacts;         ///< body–body, then wall contacts
   std::vector<WallRecord> walls;
+  /// A periodic specimen's cell, an orthogonal box: its lower and upper corners [m]; empty where
+  /// walls bound the specimen (the project's DEM). Written by `sffcal import`.
+  std::vector<std::array<double, 3>> periodic_cell;
 };
 
 /// Driver-level values stored with a checkpoint (strain references, stage, counters).

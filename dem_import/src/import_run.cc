@@ -1,0 +1,151 @@
+#include "dem_import/import_run.h"
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "dem_import/dump_file.h"
+#include "dem_import/series_table.h"
+#include "frame_snapshot.h"
+#include "runfile/run_file.h"
+#include "runfile/snapshot_geometry.h"
+
+namespace dem_import {
+namespace {
+
+// The source's roles in the series table (docs/import.md).
+const std::vector<std::string> kSeriesRoles = {"step", "time", "sxx", "syy", "szz", "syz",
+                                               "sxz", "sxy", "lx", "ly", "lz"};
+
+}  // namespace
+
+const std::vector<std::string>& imported_series_names() {
+  static const std::vector<std::string> names = {
+      "step", "time", "axial_strain", "lateral_strain_x", "lateral_strain_y", "volumetric_strain",
+      "void_ratio", "sigma_1", "sigma_3", "p", "q", "eta", "stress_xx", "stress_yy", "stress_zz",
+      "stress_yz", "stress_xz", "stress_xy"};
+  return names;
+}
+
+ImportReport import_run(const ImportDescription& d, const std::string& output,
+                        const std::string& program_version,
+                        const std::function<void(const std::string&)>& progress) {
+  ImportReport report;
+  const SeriesTable table = read_series_table(d.series_path);
+  const std::string table_name = "the series table " + d.series_path;
+  std::map<std::string, const std::vector<double>*> role;
+  for (const std::string& r : kSeriesRoles)
+    role[r] = &table.column(ImportDescription::column(d.series_columns, r), table_name);
+  std::vector<std::string> extra;
+  for (const std::string& c : table.columns) {
+    bool used = false;
+    for (const auto& [r, values] : role) used |= ImportDescription::column(d.series_columns, r) == c;
+    if (!used) extra.push_back(c);
+  }
+  const std::size_t rows = table.rows();
+  std::map<std::int64_t, std::size_t> row_of_step;
+  for (std::size_t k = 0; k < rows; ++k) {
+    const double step = (*role["step"])[k];
+    if (step != std::floor(step) || !(std::abs(step) < 9e15))
+      throw std::runtime_error(table_name + ": row " + std::to_string(k + 1) +
+                               " has a step that is not an integer");
+    if (!row_of_step.emplace(static_cast<std::int64_t>(step), k).second)
+      throw std::runtime_error(table_name + ": step " + std::to_string(static_cast<std::int64_t>(step)) +
+                               " is repeated (row " + std::to_string(k + 1) + ")");
+  }
+
+  runfile::RunMetadata meta;
+  meta.kind = d.kind;
+  meta.config_text = d.text;
+  meta.program_version = program_version;
+  meta.physics = d.physics;
+  meta.loading = d.loading;
+  std::vector<std::string> names = imported_series_names();
+  for (const std::string& c : extra) names.push_back("source_" + c);
+  runfile::RunFile file = runfile::RunFile::create(output, meta, names);
+  std::ostringstream note;
+  note << d.program << " " << d.version << ", imported from " << d.atoms_path << ", "
+       << d.contacts_path << " and " << d.series_path << " (described by " << d.path
+       << "). Bodies are numbered in the order of their source ids; the source's velocities are "
+          "not imported (zero in the snapshots); the sliding flag is |f_t| >= mu f_n with the "
+          "stated friction. Stress: " << d.stress_definition << ".";
+  file.write_note("import", note.str());
+
+  DumpReader atoms(d.atoms_path, "atoms dump"), contacts(d.contacts_path, "contacts dump");
+  DumpFrame atoms_frame, contacts_frame;
+  double solid = 0.0;
+  std::size_t bodies = 0;
+  const double height0 = (*role["lz"])[0];
+  while (atoms.next(atoms_frame)) {
+    const std::string at = " (timestep " + std::to_string(atoms_frame.timestep) + ")";
+    if (!contacts.next(contacts_frame))
+      throw std::runtime_error(contacts.name() + " ends after " + std::to_string(report.snapshots) +
+                               " frames, but the " + atoms.name() + " has more" + at);
+    if (contacts_frame.timestep != atoms_frame.timestep)
+      throw std::runtime_error("frame " + std::to_string(report.snapshots + 1) + " of the " +
+                               atoms.name() + " is at timestep " +
+                               std::to_string(atoms_frame.timestep) + ", of the " + contacts.name() +
+                               " at " + std::to_string(contacts_frame.timestep) +
+                               "; the two dumps must be written at the same timesteps");
+    const auto row = row_of_step.find(atoms_frame.timestep);
+    if (row == row_of_step.end())
+      throw std::runtime_error(table_name + " has no row at step " +
+                               std::to_string(atoms_frame.timestep) + ", where the dumps have a frame");
+    runfile::Snapshot s = internal::snapshot_from_frames(atoms_frame, contacts_frame, d,
+                                                         atoms.name(), contacts.name());
+    if (report.snapshots == 0) {
+      solid = runfile::solid_volume(s);
+      bodies = s.particles.size();
+    } else if (s.particles.size() != bodies) {
+      throw std::runtime_error(atoms.name() + at + " holds " + std::to_string(s.particles.size()) +
+                               " bodies, its first frame " + std::to_string(bodies));
+    }
+    s.step = atoms_frame.timestep;
+    s.time = (*role["time"])[row->second];
+    s.axial_strain = (height0 - (*role["lz"])[row->second]) / height0;
+    file.write_snapshot(s);
+    ++report.snapshots;
+    report.contacts = s.contacts.size();
+    report.spheres = s.spheres.size();
+    progress("snapshot " + std::to_string(report.snapshots) + " at step " +
+             std::to_string(s.step) + ": " + std::to_string(s.particles.size()) + " bodies, " +
+             std::to_string(s.contacts.size()) + " contacts");
+  }
+  if (contacts.next(contacts_frame))
+    throw std::runtime_error(contacts.name() + " has more frames than the " + atoms.name() + " (" +
+                             std::to_string(report.snapshots) + ")");
+  if (report.snapshots == 0) throw std::runtime_error(atoms.name() + " holds no frame");
+
+  // The series: strains against the first row, the stress compression positive.
+  const double sign = d.stress_tension_positive ? -1.0 : 1.0;
+  const auto& lx = *role["lx"];
+  const auto& ly = *role["ly"];
+  const auto& lz = *role["lz"];
+  const double volume0 = lx[0] * ly[0] * lz[0];
+  for (std::size_t k = 0; k < rows; ++k) {
+    const auto value = [&](const char* r) { return (*role[r])[k]; };
+    const double volume = lx[k] * ly[k] * lz[k];
+    if (!(volume > 0.0))
+      throw std::runtime_error(table_name + ": row " + std::to_string(k + 1) +
+                               " has a cell length that is not positive");
+    const double sxx = sign * value("sxx"), syy = sign * value("syy"), szz = sign * value("szz");
+    const double sigma_3 = 0.5 * (sxx + syy), p = (sxx + syy + szz) / 3.0, q = szz - sigma_3;
+    std::vector<double> out = {value("step"), value("time"), (lz[0] - lz[k]) / lz[0],
+                               (lx[0] - lx[k]) / lx[0], (ly[0] - ly[k]) / ly[0],
+                               (volume0 - volume) / volume0, volume / solid - 1.0, szz, sigma_3, p,
+                               q, p != 0.0 ? q / p : 0.0, sxx, syy, szz, sign * value("syz"),
+                               sign * value("sxz"), sign * value("sxy")};
+    for (const std::string& c : extra) out.push_back(table.column(c, table_name)[k]);
+    file.append_series(out);
+  }
+  file.flush();
+  report.series_rows = rows;
+  report.bodies = bodies;
+  report.solid_volume = solid;
+  report.initial_void_ratio = volume0 / solid - 1.0;
+  return report;
+}
+
+}  // namespace dem_import
