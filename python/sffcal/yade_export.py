@@ -30,7 +30,10 @@ What is written, all SI (m, N, Pa, s), at YADE's step O.iter:
 - series.txt: `step time sxx syy szz syz sxz sxy lx ly lz` and YADE's own figures as extra
   columns (the importer keeps them as source_<name>): `phi_xx .. phi_xy` = utils.fabricTensor()
   (<n n> over the real interactions), `unbalanced` = utils.unbalancedForce(), `porosity` =
-  utils.porosity(), which counts every sphere's whole volume (a clump's lens twice). The stress is
+  utils.porosity(), which counts every sphere's whole volume (a clump's lens twice),
+  `coordination` = utils.avgNumInteractions(considerClumps=True) (2 C / N over the clumps) and
+  `mechanical_coordination` = utils.avgNumInteractions(skipFree=True) (Thornton's
+  (2C - N1)/(N - N0 - N1), bodies with no contact or one left out). The stress is
   the symmetric part of utils.getStress(), the Love-Weber stress with the branch vector between
   the clumps' centroids, YADE's sign: tension positive (import.toml says so);
 - import.toml: [source] yade and its version, [files], [physics] and [test] as given, [series],
@@ -65,7 +68,8 @@ TEST_KEYS = {
 ATOM_COLUMNS = "id mol x y z radius"
 CONTACT_COLUMNS = "atom1 atom2 fx fy fz nx ny nz px py pz overlap"
 SERIES_COLUMNS = ("step time sxx syy szz syz sxz sxy lx ly lz "
-                  "phi_xx phi_yy phi_zz phi_yz phi_xz phi_xy unbalanced porosity")
+                  "phi_xx phi_yy phi_zz phi_yz phi_xz phi_xy unbalanced porosity "
+                  "coordination mechanical_coordination")
 STRESS_DEFINITION = ("YADE utils.getStress(): Love-Weber, branch vector between the clumps' "
                      "centroids; symmetric part")
 # The six components in the series' order: xx yy zz yz xz xy.
@@ -194,7 +198,8 @@ class Exporter:
 
     def write_row(self):
         """Appends the series row at step O.iter: time [s], the stress [Pa] (tension positive),
-        the cell's lengths [m], the fabric, the unbalanced-force ratio and the porosity. Returns
+        the cell's lengths [m], the fabric, the unbalanced-force ratio, the porosity and the
+        coordination numbers. Returns
         False, writing nothing, where the last row is at this step already."""
         O, utils = self._O, self._utils
         step = O.iter
@@ -211,7 +216,9 @@ class Exporter:
         stress = [0.5 * (s[i][j] + s[j][i]) for i, j in _VOIGT]
         fabric = [phi[i][j] for i, j in _VOIGT]
         values = ([O.time] + stress + list(lengths) + fabric
-                  + [utils.unbalancedForce(), utils.porosity()])
+                  + [utils.unbalancedForce(), utils.porosity(),
+                     utils.avgNumInteractions(considerClumps=True),
+                     utils.avgNumInteractions(skipFree=True)])
         self._series.write(f"{step} {_numbers(*values)}\n")
         self._series.flush()
         self._last_row = step

@@ -88,7 +88,7 @@ TEST(ImportYade, ItsContactsGiveYadesOwnStressAndFabric) {
   EXPECT_EQ(file.metadata().physics.youngs_modulus, d.physics.youngs_modulus);
   EXPECT_NE(file.read_note("import").find("yade"), std::string::npos);
   const std::vector<double> steps = file.series("step");
-  double worst_stress = 0.0, worst_fabric = 0.0, worst_void = 0.0;
+  double worst_stress = 0.0, worst_fabric = 0.0, worst_void = 0.0, worst_coordination = 0.0;
   for (int k = 0; k < file.num_snapshots(); ++k) {
     const runfile::Snapshot s = file.read_snapshot(k);
     ASSERT_EQ(s.periodic_cell.size(), 2u);
@@ -105,12 +105,17 @@ TEST(ImportYade, ItsContactsGiveYadesOwnStressAndFabric) {
     const Eigen::Matrix3d yade_phi = series_tensor(file, "source_phi_", row);
     worst_fabric = std::max(worst_fabric, (phi - yade_phi).norm() / yade_phi.norm());
     worst_void = std::max(worst_void, std::abs(a.void_ratio - file.series("void_ratio")[row]));
+    // YADE's avgNumInteractions(considerClumps=True): 2 C / N over the clumps, as sffcal counts.
+    worst_coordination = std::max(
+        worst_coordination, std::abs(a.coordination - file.series("source_coordination")[row]));
   }
-  std::printf("%d snapshots: stress %.2e, fabric %.2e, void ratio %.2e from YADE's\n",
-              file.num_snapshots(), worst_stress, worst_fabric, worst_void);
+  std::printf("%d snapshots: stress %.2e, fabric %.2e, void ratio %.2e, coordination %.2e from "
+              "YADE's\n", file.num_snapshots(), worst_stress, worst_fabric, worst_void,
+              worst_coordination);
   EXPECT_LT(worst_stress, 1e-6) << "the contact stress against YADE's getStress";
   EXPECT_LT(worst_fabric, 1e-10) << "the fabric against YADE's fabricTensor";
   EXPECT_LT(worst_void, 1e-12) << "the series' void ratio against the snapshots'";
+  EXPECT_LT(worst_coordination, 1e-12) << "the coordination against YADE's avgNumInteractions";
   // The series: strains from the cell, the stress compression positive.
   EXPECT_EQ(file.series("axial_strain").front(), 0.0);
   EXPECT_GT(file.series("axial_strain").back(), 0.0);
