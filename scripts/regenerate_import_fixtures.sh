@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
-# Regenerates tests/data/import/yade/, the YADE fixture of `sffcal import` (docs/import.md), with
+# Regenerates the fixtures of `sffcal import` (docs/import.md) with the real programs.
+# tests/data/import/lammps/: 100 clumps in LAMMPS (Debian's `lammps`; examples/lammps/run.sh on
+# two MPI ranks, 2 % axial strain, a snapshot every 1 %): 0.45 MB, 15 s.
+# tests/data/import/yade/, the YADE fixture, with
 # the real program: a small drained triaxial compression of 150 two-sphere clumps in YADE (Debian's
 # `yade`; examples/yade/triaxial.py, 4 % axial strain, a snapshot every 2 %), written from inside
 # YADE by sffcal.yade_export (python/sffcal, pure Python: PYTHONPATH=python, no build needed):
@@ -12,6 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=tests/data/import/yade
 seed=fuzz/corpus/import_seed
+lammps_out=tests/data/import/lammps
 
 force=0
 case "${1:-}" in
@@ -19,11 +23,14 @@ case "${1:-}" in
   --force) force=1 ;;
   *) echo "usage: scripts/regenerate_import_fixtures.sh [--force]" >&2; exit 2 ;;
 esac
-if ! command -v yade > /dev/null; then
-  echo "regenerate_import_fixtures.sh: yade is not installed (Debian: apt-get install yade)" >&2
-  exit 1
-fi
-for folder in "$out" "$seed"; do
+for program in yade lmp; do
+  if ! command -v "$program" > /dev/null; then
+    echo "regenerate_import_fixtures.sh: $program is not installed (Debian: apt-get install" \
+      "yade lammps)" >&2
+    exit 1
+  fi
+done
+for folder in "$out" "$seed" "$lammps_out"; do
   if [ -e "$folder" ]; then
     if [ "$force" = 1 ]; then
       rm -rf -- "$folder"
@@ -48,3 +55,11 @@ for name in import.toml atoms.dump contacts.dump series.txt; do
   byte=$((byte + 1))
 done
 du -sh "$seed"
+
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+examples/lammps/run.sh -np 2 "$scratch/run" -var nclumps 100 -var final_strain 0.02 \
+  -var frame_strain 0.01 -var seed 1
+mkdir -p "$lammps_out"
+cp "$scratch"/run/{import.toml,atoms.dump,contacts.dump,series.txt} "$lammps_out"/
+du -sh "$lammps_out"

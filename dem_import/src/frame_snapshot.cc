@@ -157,6 +157,9 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
   const std::size_t c_a = cc.required("atom1"), c_b = cc.required("atom2");
   const std::size_t c_f = cc.vector("fx", "fy", "fz");
   if (c_f == DumpFrame::npos) cc.required("fx");
+  // A tangential part given apart (LAMMPS's compute pair/local: fx fy fz the normal force, p1 p2
+  // p3 the tangential one) is added.
+  const std::size_t c_ft = cc.vector("ftx", "fty", "ftz");
   const std::size_t c_n = cc.vector("nx", "ny", "nz"), c_p = cc.vector("px", "py", "pz");
   const std::size_t c_overlap = cc.optional("overlap");
   const double mu = d.physics.friction;
@@ -176,6 +179,8 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
       throw std::runtime_error(row + " joins two spheres of one body (exclude them in the "
                                "source, e.g. LAMMPS's neigh_modify exclude molecule/intra)");
     Eigen::Vector3d force(contacts.at(r, c_f), contacts.at(r, c_f + 1), contacts.at(r, c_f + 2));
+    if (c_ft != DumpFrame::npos)
+      force += Eigen::Vector3d(contacts.at(r, c_ft), contacts.at(r, c_ft + 1), contacts.at(r, c_ft + 2));
     if (d.force_on_atom1) force = -force;
     const Eigen::Vector3d centre_line = nearest_image(b.position - a.position);
     Eigen::Vector3d n = centre_line.normalized();

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# `sffcal import` as a user calls it (docs/import.md): the committed YADE run (made by the real
-# program: scripts/regenerate_import_fixtures.sh) imported, analysed and calibrated; an existing
-# output kept unless --force; with `yade` installed, a fresh YADE run end to end, its imported
-# contact stress against YADE's own. Usage: import_test.sh SFFCAL_BINARY PYTHON
+# `sffcal import` as a user calls it (docs/import.md): the committed YADE and LAMMPS runs (made by
+# the real programs: scripts/regenerate_import_fixtures.sh) imported, analysed and calibrated, their
+# imported contact stress against the source's own; an existing output kept unless --force; with
+# `yade` and `lmp` installed (CI installs them), a fresh run of each end to end, LAMMPS on two MPI
+# ranks (--oversubscribe: a machine of one core runs them too). Usage: import_test.sh SFFCAL_BINARY PYTHON
 set -u
 sffcal=$1
 python=$2
@@ -47,25 +48,38 @@ out=$("$sffcal" import "$fixture" -o run.h5 2>&1) && fail "an existing output wa
   || fail "existing output: $out"
 "$sffcal" import "$fixture" -o run.h5 --force > /dev/null 2>&1 && echo "ok   --force replaces it" \
   || fail "--force"
-"$sffcal" sff run.h5 --resamples 0 > sff.log 2>&1 || { cat sff.log; fail "sff of the import"; }
-worst=$(stress_agreement run.h5)
-"$python" -c "import sys; sys.exit(0 if float('$worst') < 1e-6 else 1)" \
-  && echo "ok   the imported contacts give YADE's stress ($worst)" || fail "stress agreement $worst"
-"$sffcal" calibrate run.h5 -o fit > fit.log 2>&1 && [ -s fit/parameters.json ] \
-  && echo "ok   the import calibrates" || { cat fit.log; fail "calibrate the import"; }
 
-# A fresh YADE run, where YADE is installed (CI installs it).
+# import_analyse_calibrate NAME DESCRIPTION: import, sff and calibrate, the stress against the source's.
+import_analyse_calibrate() {
+  local name=$1 description=$2 worst
+  "$sffcal" import "$description" -o "$name.h5" > "$name.log" 2>&1 \
+    && "$sffcal" sff "$name.h5" --resamples 0 >> "$name.log" 2>&1 \
+    || { cat "$name.log"; fail "$name: import and sff"; return; }
+  worst=$(stress_agreement "$name.h5")
+  "$python" -c "import sys; sys.exit(0 if float('$worst') < 1e-6 else 1)" \
+    && echo "ok   $name: the imported contacts give the source's stress ($worst)" \
+    || fail "$name: stress agreement $worst"
+  "$sffcal" calibrate "$name.h5" -o "$name.fit" >> "$name.log" 2>&1 && [ -s "$name.fit/parameters.json" ] \
+    && echo "ok   $name: the import calibrates" || { cat "$name.log"; fail "$name: calibrate"; }
+}
+
+import_analyse_calibrate yade_fixture "$fixture"
+import_analyse_calibrate lammps_fixture "$source_dir/tests/data/import/lammps/import.toml"
+
+# Fresh runs, where the programs are installed (CI installs them).
 if command -v yade > /dev/null; then
   PYTHONPATH="$source_dir/python" yade -n -j1 -x "$source_dir/examples/yade/triaxial.py" \
-    --clumps 100 --final-strain 0.02 --frame-strain 0.01 --seed 3 --output fresh > yade.log 2>&1 \
-    || { tail -20 yade.log; fail "the YADE run"; }
-  "$sffcal" import fresh/import.toml -o fresh.h5 > /dev/null 2>&1 \
-    && "$sffcal" sff fresh.h5 --resamples 0 > /dev/null 2>&1 || fail "import and sff of a fresh YADE run"
-  worst=$(stress_agreement fresh.h5)
-  "$python" -c "import sys; sys.exit(0 if float('$worst') < 1e-6 else 1)" \
-    && echo "ok   a fresh YADE run: its imported contacts give YADE's stress ($worst)" \
-    || fail "fresh stress agreement $worst"
+    --clumps 100 --final-strain 0.02 --frame-strain 0.01 --seed 3 --output yade_run > yade.log 2>&1 \
+    && import_analyse_calibrate yade_fresh yade_run/import.toml || { tail -20 yade.log; fail "the YADE run"; }
 else
   echo "skip a fresh YADE run: yade is not installed"
+fi
+if command -v lmp > /dev/null && command -v mpirun > /dev/null; then
+  MPIRUN_FLAGS=--oversubscribe "$source_dir/examples/lammps/run.sh" -np 2 lammps_run -var nclumps 100 -var final_strain 0.02 \
+    -var seed 3 > lammps.log 2>&1 \
+    && import_analyse_calibrate lammps_fresh_2_ranks lammps_run/import.toml \
+    || { tail -20 lammps.log; fail "the LAMMPS run"; }
+else
+  echo "skip a fresh LAMMPS run: lmp (Debian's lammps) is not installed"
 fi
 exit $((failures > 0))
