@@ -44,16 +44,27 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
     for (const auto& [r, values] : role) used |= ImportDescription::column(d.series_columns, r) == c;
     if (!used) extra.push_back(c);
   }
+  // The roles' values: finite, and the steps whole and increasing (the strains are taken against
+  // the first row). The source's other columns are kept as they are (YADE's fabric is NaN
+  // where a cell has no contact).
   const std::size_t rows = table.rows();
+  for (const auto& [r, values] : role)
+    for (std::size_t k = 0; k < rows; ++k)
+      if (!std::isfinite((*values)[k]))
+        throw std::runtime_error(table_name + ": row " + std::to_string(k + 1) + ", column '" +
+                                 ImportDescription::column(d.series_columns, r) +
+                                 "': a value that is not finite");
   std::map<std::int64_t, std::size_t> row_of_step;
   for (std::size_t k = 0; k < rows; ++k) {
     const double step = (*role["step"])[k];
     if (step != std::floor(step) || !(std::abs(step) < 9e15))
       throw std::runtime_error(table_name + ": row " + std::to_string(k + 1) +
                                " has a step that is not an integer");
-    if (!row_of_step.emplace(static_cast<std::int64_t>(step), k).second)
-      throw std::runtime_error(table_name + ": step " + std::to_string(static_cast<std::int64_t>(step)) +
-                               " is repeated (row " + std::to_string(k + 1) + ")");
+    if (k > 0 && !(step > (*role["step"])[k - 1]))
+      throw std::runtime_error(table_name + ": row " + std::to_string(k + 1) + " has step " +
+                               std::to_string(static_cast<std::int64_t>(step)) +
+                               ", not after the row before it; steps must increase");
+    row_of_step.emplace(static_cast<std::int64_t>(step), k);
   }
 
   runfile::RunMetadata meta;
@@ -77,6 +88,7 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
   DumpFrame atoms_frame, contacts_frame;
   double solid = 0.0;
   std::size_t bodies = 0;
+  std::int64_t last_step = 0;
   const double height0 = (*role["lz"])[0];
   while (atoms.next(atoms_frame)) {
     const std::string at = " (timestep " + std::to_string(atoms_frame.timestep) + ")";
@@ -89,6 +101,10 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
                                std::to_string(atoms_frame.timestep) + ", of the " + contacts.name() +
                                " at " + std::to_string(contacts_frame.timestep) +
                                "; the two dumps must be written at the same timesteps");
+    if (report.snapshots > 0 && atoms_frame.timestep <= last_step)
+      throw std::runtime_error(atoms.name() + at + ": the frames' timesteps must increase (the "
+                               "one before is at " + std::to_string(last_step) + ")");
+    last_step = atoms_frame.timestep;
     const auto row = row_of_step.find(atoms_frame.timestep);
     if (row == row_of_step.end())
       throw std::runtime_error(table_name + " has no row at step " +

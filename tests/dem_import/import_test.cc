@@ -178,6 +178,14 @@ TEST(ImportYade, DamagedInputIsRefusedByName) {
       {"not_a_number", [](const fs::path& f) {
          write(f / "series.txt", replace_after(read(f / "series.txt"), "\n", 3, " ", " x"));
        }, "is not a number"},
+      {"nan_time", [](const fs::path& f) {  // the second value of the third row
+         std::string t = read(f / "series.txt");
+         const std::size_t start = t.find(' ', replace_after(t, "\n", 3, " ", "#").find('#'));
+         write(f / "series.txt", t.replace(start, t.find(' ', start + 1) - start, " nan"));
+       }, "row 3, column 'time': a value that is not finite"},
+      {"steps_backwards", [](const fs::path& f) {
+         write(f / "series.txt", replace_after(read(f / "series.txt"), "\n", 3, "", "1"));
+       }, "not after the row before it"},
       {"missing_key", [](const fs::path& f) {
          write(f / "import.toml",
                replace_after(read(f / "import.toml"), "", 0, "youngs_modulus", "# youngs_modulus"));
