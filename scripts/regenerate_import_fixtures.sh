@@ -2,6 +2,8 @@
 # Regenerates the fixtures of `sffcal import` (docs/import.md) with the real programs.
 # tests/data/import/lammps/: 100 clumps in LAMMPS (Debian's `lammps`; examples/lammps/run.sh on
 # two MPI ranks, 2 % axial strain, a snapshot every 1 %): 0.45 MB, 15 s.
+# tests/data/import/liggghts/: 300 spheres in LIGGGHTS (Debian's `liggghts`; examples/liggghts/run.sh
+# on two MPI ranks, 2 % axial strain, a snapshot every 1 %): 0.45 MB, 10 s.
 # tests/data/import/yade/, the YADE fixture, with
 # the real program: a small drained triaxial compression of 150 two-sphere clumps in YADE (Debian's
 # `yade`; examples/yade/triaxial.py, 4 % axial strain, a snapshot every 2 %), written from inside
@@ -16,6 +18,7 @@ cd "$(dirname "$0")/.."
 out=tests/data/import/yade
 seed=fuzz/corpus/import_seed
 lammps_out=tests/data/import/lammps
+liggghts_out=tests/data/import/liggghts
 
 force=0
 case "${1:-}" in
@@ -23,14 +26,14 @@ case "${1:-}" in
   --force) force=1 ;;
   *) echo "usage: scripts/regenerate_import_fixtures.sh [--force]" >&2; exit 2 ;;
 esac
-for program in yade lmp; do
+for program in yade lmp liggghts; do
   if ! command -v "$program" > /dev/null; then
     echo "regenerate_import_fixtures.sh: $program is not installed (Debian: apt-get install" \
-      "yade lammps)" >&2
+      "yade lammps liggghts)" >&2
     exit 1
   fi
 done
-for folder in "$out" "$seed" "$lammps_out"; do
+for folder in "$out" "$seed" "$lammps_out" "$liggghts_out"; do
   if [ -e "$folder" ]; then
     if [ "$force" = 1 ]; then
       rm -rf -- "$folder"
@@ -63,3 +66,7 @@ examples/lammps/run.sh -np 2 "$scratch/run" -var nclumps 100 -var final_strain 0
 mkdir -p "$lammps_out"
 cp "$scratch"/run/{import.toml,atoms.dump,contacts.dump,series.txt} "$lammps_out"/
 du -sh "$lammps_out"
+examples/liggghts/run.sh -np 2 "$scratch/liggghts" -var n 300 -var final_strain 0.02 -var seed 10007
+mkdir -p "$liggghts_out"
+cp "$scratch"/liggghts/{import.toml,atoms.dump,contacts.dump,series.txt} "$liggghts_out"/
+du -sh "$liggghts_out"

@@ -63,6 +63,7 @@ std::int64_t id_of(double value, const std::string& where) {
 }  // namespace
 
 runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& contacts,
+                                       const std::array<double, 3>& cell_length,
                                        const ImportDescription& d, const std::string& atoms_name,
                                        const std::string& contacts_name) {
   const std::string at = " at timestep " + std::to_string(atoms.timestep);
@@ -75,10 +76,18 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
   if (atoms.triclinic)
     throw std::runtime_error(atoms_where + ": a sheared (triclinic) cell is not imported; the "
                              "cell must be an orthogonal box");
-  const Eigen::Vector3d lower(atoms.lower.data()), upper(atoms.upper.data());
-  const Eigen::Vector3d length = upper - lower;
-  if (!(length.minCoeff() > 0.0) || !length.allFinite())
-    throw std::runtime_error(atoms_where + ": the box's upper bounds must lie above its lower ones");
+  const Eigen::Vector3d lower(atoms.lower.data()), length(cell_length.data());
+  for (int a = 0; a < 3; ++a) {
+    // The bounds as the dump wrote them, to 6 significant digits at least.
+    const double written = atoms.upper[a] - atoms.lower[a];
+    const double precision = 1e-5 * std::max({std::abs(atoms.lower[a]), std::abs(atoms.upper[a]),
+                                              std::abs(length[a])});
+    if (!(length[a] > 0.0) || !std::isfinite(length[a]) || !(std::abs(written - length[a]) <= precision))
+      throw std::runtime_error(atoms_where + ": the box is " + std::to_string(written) + " m long along " +
+                               std::string(1, "xyz"[a]) + ", the series row of that step says " +
+                               std::to_string(length[a]) + " m");
+  }
+  const Eigen::Vector3d upper = lower + length;
   const auto nearest_image = [&](Eigen::Vector3d v) {
     for (int a = 0; a < 3; ++a) v[a] -= length[a] * std::round(v[a] / length[a]);
     return v;

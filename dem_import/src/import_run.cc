@@ -109,8 +109,10 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
     if (row == row_of_step.end())
       throw std::runtime_error(table_name + " has no row at step " +
                                std::to_string(atoms_frame.timestep) + ", where the dumps have a frame");
-    runfile::Snapshot s = internal::snapshot_from_frames(atoms_frame, contacts_frame, d,
-                                                         atoms.name(), contacts.name());
+    const std::array<double, 3> cell_length = {(*role["lx"])[row->second], (*role["ly"])[row->second],
+                                               (*role["lz"])[row->second]};
+    runfile::Snapshot s = internal::snapshot_from_frames(atoms_frame, contacts_frame, cell_length,
+                                                         d, atoms.name(), contacts.name());
     if (report.snapshots == 0) {
       solid = runfile::solid_volume(s);
       bodies = s.particles.size();

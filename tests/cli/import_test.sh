@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# `sffcal import` as a user calls it (docs/import.md): the committed YADE and LAMMPS runs (made by
+# `sffcal import` as a user calls it (docs/import.md): the committed YADE, LAMMPS and LIGGGHTS runs (made by
 # the real programs: scripts/regenerate_import_fixtures.sh) imported, analysed and calibrated, their
 # imported contact stress against the source's own; an existing output kept unless --force; with
-# `yade` and `lmp` installed (CI installs them), a fresh run of each end to end, LAMMPS on two MPI
-# ranks (--oversubscribe: a machine of one core runs them too). Usage: import_test.sh SFFCAL_BINARY PYTHON
+# `yade`, `lmp` and `liggghts` installed (CI installs them), a fresh run of each end to end, LAMMPS on two MPI
+# ranks (--oversubscribe: a machine of one core runs them too), LIGGGHTS likewise. Usage: import_test.sh SFFCAL_BINARY PYTHON
 set -u
 sffcal=$1
 python=$2
@@ -65,6 +65,7 @@ import_analyse_calibrate() {
 
 import_analyse_calibrate yade_fixture "$fixture"
 import_analyse_calibrate lammps_fixture "$source_dir/tests/data/import/lammps/import.toml"
+import_analyse_calibrate liggghts_fixture "$source_dir/tests/data/import/liggghts/import.toml"
 
 # Fresh runs, where the programs are installed (CI installs them).
 if command -v yade > /dev/null; then
@@ -81,5 +82,13 @@ if command -v lmp > /dev/null && command -v mpirun > /dev/null; then
     || { tail -20 lammps.log; fail "the LAMMPS run"; }
 else
   echo "skip a fresh LAMMPS run: lmp (Debian's lammps) is not installed"
+fi
+if command -v liggghts > /dev/null && command -v mpirun > /dev/null; then
+  MPIRUN_FLAGS=--oversubscribe "$source_dir/examples/liggghts/run.sh" -np 2 liggghts_run \
+    -var n 300 -var final_strain 0.02 -var seed 10009 > liggghts.log 2>&1 \
+    && import_analyse_calibrate liggghts_fresh_2_ranks liggghts_run/import.toml \
+    || { tail -20 liggghts.log; fail "the LIGGGHTS run"; }
+else
+  echo "skip a fresh LIGGGHTS run: liggghts is not installed"
 fi
 exit $((failures > 0))

@@ -153,6 +153,32 @@ TEST(ImportLammps, ItsContactsGiveLammpsOwnStress) {
   EXPECT_LT(worst, 1e-6) << "the contact stress against LAMMPS's pair virial about the centroids";
 }
 
+// The LIGGGHTS deck (examples/liggghts/triaxial.in): spheres, each its own body; its series stress
+// is compute pressure's pair virial, symmetrised with the contact torques. Its dumps' box bounds
+// have 6 digits: the cell's lengths come from the series.
+TEST(ImportLiggghts, ItsContactsGiveLiggghtsOwnStress) {
+  const fs::path folder = copy_of_fixture("liggghts", kFixtures + "liggghts");
+  const ImportDescription d = read_description((folder / "import.toml").string());
+  const std::string path = (folder / "run.h5").string();
+  const ImportReport report = import_run(d, path, "test", [](const std::string&) {});
+  ASSERT_GE(report.snapshots, 2);
+  EXPECT_EQ(report.bodies, report.spheres);
+  const runfile::RunFile file = runfile::RunFile::open(path);
+  const std::vector<double> steps = file.series("step");
+  double worst = 0.0;
+  for (int k = 0; k < file.num_snapshots(); ++k) {
+    const runfile::Snapshot s = file.read_snapshot(k);
+    const sff::SnapshotAnalysis a = sff::analyse_snapshot(sff::snapshot_input(s, d.physics));
+    const auto row = static_cast<std::size_t>(
+        std::find(steps.begin(), steps.end(), static_cast<double>(s.step)) - steps.begin());
+    ASSERT_LT(row, steps.size());
+    const Eigen::Matrix3d liggghts = series_tensor(file, "stress_", row);
+    worst = std::max(worst, (a.stress - liggghts).norm() / liggghts.norm());
+  }
+  std::printf("%d snapshots: stress %.2e from LIGGGHTS's\n", file.num_snapshots(), worst);
+  EXPECT_LT(worst, 1e-6) << "the contact stress against LIGGGHTS's pair virial";
+}
+
 TEST(ImportYade, DamagedInputIsRefusedByName) {
   struct Case {
     const char* name;
