@@ -124,32 +124,46 @@ TEST(ImportYade, ItsContactsGiveYadesOwnStressAndFabric) {
   EXPECT_GT(file.series("p").front(), 0.0);
 }
 
+// The largest |sigma_contacts - T| / |T| over the snapshots of an imported run, T the series'
+// tensor `prefix`xx .. `prefix`xy of each snapshot's step.
+double worst_stress_against(const runfile::RunFile& file, const std::string& prefix) {
+  const std::vector<double> steps = file.series("step");
+  double worst = 0.0;
+  for (int k = 0; k < file.num_snapshots(); ++k) {
+    const runfile::Snapshot s = file.read_snapshot(k);
+    const sff::SnapshotAnalysis a =
+        sff::analyse_snapshot(sff::snapshot_input(s, file.metadata().physics));
+    const auto row = static_cast<std::size_t>(
+        std::find(steps.begin(), steps.end(), static_cast<double>(s.step)) - steps.begin());
+    if (row == steps.size()) {
+      ADD_FAILURE() << "no series row at step " << s.step;
+      return INFINITY;
+    }
+    const Eigen::Matrix3d source = series_tensor(file, prefix, row);
+    worst = std::max(worst, (a.stress - source).norm() / source.norm());
+  }
+  return worst;
+}
+
+// An import of the fixture `name` into a run file beside its copy; returns the run file's path.
+std::string import_fixture(const std::string& name, ImportReport& report) {
+  const fs::path folder = copy_of_fixture(name, kFixtures + name);
+  const std::string path = (folder / "run.h5").string();
+  report = import_run(read_description((folder / "import.toml").string()), path, "test",
+                      [](const std::string&) {});
+  return path;
+}
+
 // The LAMMPS deck's series stress (examples/lammps/triaxial.in) is the Love-Weber stress of LAMMPS's
 // pair virial with the spheres' moments about their clump centroids taken out; its `compute
 // pressure NULL virial` (with fix rigid/small's constraint virial) is kept as source_v*.
 TEST(ImportLammps, ItsContactsGiveLammpsOwnStress) {
-  const fs::path folder = copy_of_fixture("lammps", kFixtures + "lammps");
-  const ImportDescription d = read_description((folder / "import.toml").string());
-  EXPECT_TRUE(d.force_on_atom1);
-  const std::string path = (folder / "run.h5").string();
-  const ImportReport report = import_run(d, path, "test", [](const std::string&) {});
+  ImportReport report;
+  const runfile::RunFile file = runfile::RunFile::open(import_fixture("lammps", report));
   ASSERT_GE(report.snapshots, 2);
-  const runfile::RunFile file = runfile::RunFile::open(path);
-  const std::vector<double> steps = file.series("step");
-  double worst = 0.0, worst_virial = 0.0;
-  for (int k = 0; k < file.num_snapshots(); ++k) {
-    const runfile::Snapshot s = file.read_snapshot(k);
-    const sff::SnapshotAnalysis a = sff::analyse_snapshot(sff::snapshot_input(s, d.physics));
-    const auto row = static_cast<std::size_t>(
-        std::find(steps.begin(), steps.end(), static_cast<double>(s.step)) - steps.begin());
-    ASSERT_LT(row, steps.size());
-    const Eigen::Matrix3d lammps = series_tensor(file, "stress_", row);
-    worst = std::max(worst, (a.stress - lammps).norm() / lammps.norm());
-    const Eigen::Matrix3d virial = series_tensor(file, "source_v", row);
-    worst_virial = std::max(worst_virial, (a.stress - virial).norm() / virial.norm());
-  }
+  const double worst = worst_stress_against(file, "stress_");
   std::printf("%d snapshots: stress %.2e from the deck's, %.2e from compute pressure virial\n",
-              file.num_snapshots(), worst, worst_virial);
+              report.snapshots, worst, worst_stress_against(file, "source_v"));
   EXPECT_LT(worst, 1e-6) << "the contact stress against LAMMPS's pair virial about the centroids";
 }
 
@@ -157,25 +171,12 @@ TEST(ImportLammps, ItsContactsGiveLammpsOwnStress) {
 // is compute pressure's pair virial, symmetrised with the contact torques. Its dumps' box bounds
 // have 6 digits: the cell's lengths come from the series.
 TEST(ImportLiggghts, ItsContactsGiveLiggghtsOwnStress) {
-  const fs::path folder = copy_of_fixture("liggghts", kFixtures + "liggghts");
-  const ImportDescription d = read_description((folder / "import.toml").string());
-  const std::string path = (folder / "run.h5").string();
-  const ImportReport report = import_run(d, path, "test", [](const std::string&) {});
+  ImportReport report;
+  const runfile::RunFile file = runfile::RunFile::open(import_fixture("liggghts", report));
   ASSERT_GE(report.snapshots, 2);
   EXPECT_EQ(report.bodies, report.spheres);
-  const runfile::RunFile file = runfile::RunFile::open(path);
-  const std::vector<double> steps = file.series("step");
-  double worst = 0.0;
-  for (int k = 0; k < file.num_snapshots(); ++k) {
-    const runfile::Snapshot s = file.read_snapshot(k);
-    const sff::SnapshotAnalysis a = sff::analyse_snapshot(sff::snapshot_input(s, d.physics));
-    const auto row = static_cast<std::size_t>(
-        std::find(steps.begin(), steps.end(), static_cast<double>(s.step)) - steps.begin());
-    ASSERT_LT(row, steps.size());
-    const Eigen::Matrix3d liggghts = series_tensor(file, "stress_", row);
-    worst = std::max(worst, (a.stress - liggghts).norm() / liggghts.norm());
-  }
-  std::printf("%d snapshots: stress %.2e from LIGGGHTS's\n", file.num_snapshots(), worst);
+  const double worst = worst_stress_against(file, "stress_");
+  std::printf("%d snapshots: stress %.2e from LIGGGHTS's\n", report.snapshots, worst);
   EXPECT_LT(worst, 1e-6) << "the contact stress against LIGGGHTS's pair virial";
 }
 
