@@ -99,7 +99,8 @@ void RunFileTarget::make(const std::function<void(const std::string&)>& write) c
   } catch (const std::exception& e) {
     if (!replaces_) throw;
     std::error_code error;
-    if (fs::is_empty(working, error)) {  // claimed, and no run file made there
+    // Claimed and no run file made there, or the writer removed what it made (an import).
+    if (!fs::exists(working, error) || fs::is_empty(working, error)) {
       fs::remove(working, error);
       throw std::runtime_error(std::string(e.what()) + "\n  (the existing '" + path_ +
                                "' is kept as it was)");

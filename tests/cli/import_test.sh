@@ -48,6 +48,16 @@ out=$("$sffcal" import "$fixture" -o run.h5 2>&1) && fail "an existing output wa
   || fail "existing output: $out"
 "$sffcal" import "$fixture" -o run.h5 --force > /dev/null 2>&1 && echo "ok   --force replaces it" \
   || fail "--force"
+# An import that stops on a damaged dump leaves nothing behind, and keeps what --force would replace.
+mkdir damaged && cp "$(dirname "$fixture")"/* damaged/
+head -c 300000 "$(dirname "$fixture")/contacts.dump" > damaged/contacts.dump
+out=$("$sffcal" import damaged/import.toml -o new.h5 2>&1) && fail "a truncated dump was imported"
+[[ $out == *"contacts dump"*"line"* && ! -e new.h5 ]] && echo "ok   a failed import leaves no file" \
+  || fail "failed import: $out; $(ls)"
+cp run.h5 kept.h5
+"$sffcal" import damaged/import.toml -o run.h5 --force > /dev/null 2>&1
+cmp -s run.h5 kept.h5 && [[ -z $(ls | grep replacing) ]] \
+  && echo "ok   a failed import with --force keeps the file it would replace" || fail "failed --force"
 
 # import_analyse_calibrate NAME DESCRIPTION: import, sff and calibrate, the stress against the source's.
 import_analyse_calibrate() {
