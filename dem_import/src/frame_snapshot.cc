@@ -54,9 +54,11 @@ struct Atom {
   double radius = 0.0;
 };
 
-std::int64_t id_of(double value, const std::string& where) {
+// The id in a dump's column of doubles; `where` makes the row's name for a message.
+template <class Where>
+std::int64_t id_of(double value, const Where& where) {
   if (!(std::abs(value) < 9.0e15) || value != std::floor(value))
-    throw std::runtime_error(where + " is not an integer id");
+    throw std::runtime_error(where() + ": an id that is not an integer (" + std::to_string(value) + ")");
   return static_cast<std::int64_t>(value);
 }
 
@@ -102,17 +104,17 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
   atom.reserve(atoms.rows());
   std::map<std::int64_t, std::vector<std::int64_t>> members;  // source body id -> atom ids
   for (std::size_t r = 0; r < atoms.rows(); ++r) {
-    const std::string row = atoms_where + ", atom row " + std::to_string(r + 1);
-    const std::int64_t id = id_of(atoms.at(r, c_id), row + ": the id");
+    // Messages are made only for a row at fault (a frame holds tens of thousands).
+    const auto row = [&] { return atoms_where + ", atom row " + std::to_string(r + 1); };
+    const std::int64_t id = id_of(atoms.at(r, c_id), row);
     Atom a;
     a.position = {atoms.at(r, c_x), atoms.at(r, c_x + 1), atoms.at(r, c_x + 2)};
     a.radius = atoms.at(r, c_radius);
     if (!a.position.allFinite() || !(a.radius > 0.0) || !std::isfinite(a.radius))
-      throw std::runtime_error(row + ": a position that is not finite or a radius not positive");
+      throw std::runtime_error(row() + ": a position that is not finite or a radius not positive");
     if (!atom.emplace(id, a).second)
-      throw std::runtime_error(row + ": atom " + std::to_string(id) + " is repeated");
-    const std::int64_t body =
-        c_body == DumpFrame::npos ? id : id_of(atoms.at(r, c_body), row + ": the body (mol)");
+      throw std::runtime_error(row() + ": atom " + std::to_string(id) + " is repeated");
+    const std::int64_t body = c_body == DumpFrame::npos ? id : id_of(atoms.at(r, c_body), row);
     members[body].push_back(id);
   }
 
@@ -121,9 +123,9 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
   std::vector<Eigen::Vector3d> centroid;
   for (const auto& [source_id, ids] : members) {
     const std::size_t body = s.particles.size();
-    const std::string name = atoms_where + ": body " + std::to_string(source_id);
+    const auto name = [&, id = source_id] { return atoms_where + ": body " + std::to_string(id); };
     if (ids.size() > 2)
-      throw std::runtime_error(name + " has " + std::to_string(ids.size()) +
+      throw std::runtime_error(name() + " has " + std::to_string(ids.size()) +
                                " spheres; a body is one sphere or a two-sphere clump");
     Atom& first = atom.at(ids.front());
     Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
@@ -131,7 +133,7 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
     if (ids.size() == 2) {
       Atom& second = atom.at(ids.back());
       if (std::abs(second.radius - first.radius) > 1e-9 * first.radius)
-        throw std::runtime_error(name + " joins spheres of unequal radii (" +
+        throw std::runtime_error(name() + " joins spheres of unequal radii (" +
                                  std::to_string(first.radius) + ", " +
                                  std::to_string(second.radius) +
                                  " m); the run file's clumps are of equal spheres");
@@ -139,7 +141,7 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
       second.position = first.position + nearest_image(second.position - first.position);
       const Eigen::Vector3d between = second.position - first.position;
       if (!(between.norm() < 2.0 * first.radius))
-        throw std::runtime_error(name + ": its two spheres do not overlap (" +
+        throw std::runtime_error(name() + ": its two spheres do not overlap (" +
                                  std::to_string(between.norm()) + " m apart), not one clump");
       middle = 0.5 * (first.position + second.position);
       if (between.norm() > 0.0) axis = between.normalized();
@@ -174,18 +176,18 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
   const double mu = d.physics.friction;
   s.contacts.reserve(contacts.rows());
   for (std::size_t r = 0; r < contacts.rows(); ++r) {
-    const std::string row = contacts_where + ", contact row " + std::to_string(r + 1);
+    const auto row = [&] { return contacts_where + ", contact row " + std::to_string(r + 1); };
     const auto find_atom = [&](std::size_t column) -> const Atom& {
-      const std::int64_t id = id_of(contacts.at(r, column), row + ": an atom id");
+      const std::int64_t id = id_of(contacts.at(r, column), row);
       const auto it = atom.find(id);
       if (it == atom.end())
-        throw std::runtime_error(row + " names atom " + std::to_string(id) +
+        throw std::runtime_error(row() + " names atom " + std::to_string(id) +
                                  ", which the atoms frame of that timestep does not hold");
       return it->second;
     };
     const Atom &a = find_atom(c_a), &b = find_atom(c_b);
     if (a.body == b.body)
-      throw std::runtime_error(row + " joins two spheres of one body (exclude them in the "
+      throw std::runtime_error(row() + " joins two spheres of one body (exclude them in the "
                                "source, e.g. LAMMPS's neigh_modify exclude molecule/intra)");
     Eigen::Vector3d force(contacts.at(r, c_f), contacts.at(r, c_f + 1), contacts.at(r, c_f + 2));
     if (c_ft != DumpFrame::npos)
@@ -196,7 +198,7 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
     if (c_n != DumpFrame::npos) {
       n = {contacts.at(r, c_n), contacts.at(r, c_n + 1), contacts.at(r, c_n + 2)};
       if (!(std::abs(n.norm() - 1.0) <= 1e-6))
-        throw std::runtime_error(row + ": the normal is not a unit vector");
+        throw std::runtime_error(row() + ": the normal is not a unit vector");
     }
     const double overlap = c_overlap != DumpFrame::npos
                                ? contacts.at(r, c_overlap)
@@ -206,7 +208,7 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
       point = {contacts.at(r, c_p), contacts.at(r, c_p + 1), contacts.at(r, c_p + 2)};
     const Eigen::Vector3d branch = nearest_image(centroid[b.body] - centroid[a.body]);
     if (!force.allFinite() || !n.allFinite() || !point.allFinite() || !std::isfinite(overlap))
-      throw std::runtime_error(row + ": a value is not finite");
+      throw std::runtime_error(row() + ": a value is not finite");
     runfile::ContactRecord c;
     c.body_a = static_cast<std::int64_t>(a.body);
     c.body_b = static_cast<std::int64_t>(b.body);
