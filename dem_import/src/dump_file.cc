@@ -75,9 +75,9 @@ bool DumpReader::next(DumpFrame& frame) {
     next_line("the box bounds");
     const std::vector<std::string_view> bounds = internal::fields(line_);
     if (bounds.size() != (frame.triclinic ? 3u : 2u)) fail("a box-bounds line needs its bounds");
-    const auto bad = [&](const std::string& w) { fail(w); };
-    frame.lower[a] = internal::parse_real(bounds[0], "a box bound", bad);
-    frame.upper[a] = internal::parse_real(bounds[1], "a box bound", bad);
+    const auto bad = [&](const std::string& w) { fail("a box bound: " + w); };
+    frame.lower[a] = internal::parse_real(bounds[0], bad);
+    frame.upper[a] = internal::parse_real(bounds[1], bad);
   }
   next_line("ITEM: ATOMS or ITEM: ENTRIES");
   if (line_.rfind("ITEM: ATOMS", 0) != 0 && line_.rfind("ITEM: ENTRIES", 0) != 0)
@@ -98,8 +98,9 @@ bool DumpReader::next(DumpFrame& frame) {
     if (values.size() != width)
       fail(std::to_string(values.size()) + " values for " + std::to_string(width) + " columns");
     for (std::size_t k = 0; k < width; ++k)
-      frame.values.push_back(internal::parse_real(
-          values[k], "column '" + frame.columns[k] + "'", [&](const std::string& w) { fail(w); }));
+      frame.values.push_back(internal::parse_real(values[k], [&](const std::string& w) {
+        fail("column '" + frame.columns[k] + "': " + w);
+      }));
   }
   return true;
 }

@@ -38,11 +38,12 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
   std::map<std::string, const std::vector<double>*> role;
   for (const std::string& r : kSeriesRoles)
     role[r] = &table.column(ImportDescription::column(d.series_columns, r), table_name);
-  std::vector<std::string> extra;
-  for (const std::string& c : table.columns) {
+  std::vector<std::string> extra;                   // the source's other columns, kept
+  std::vector<const std::vector<double>*> extra_values;
+  for (std::size_t k = 0; k < table.columns.size(); ++k) {
     bool used = false;
-    for (const auto& [r, values] : role) used |= ImportDescription::column(d.series_columns, r) == c;
-    if (!used) extra.push_back(c);
+    for (const auto& [r, values] : role) used |= values == &table.values[k];
+    if (!used) extra.push_back(table.columns[k]), extra_values.push_back(&table.values[k]);
   }
   // The roles' values: finite, and the steps whole and increasing (the strains are taken against
   // the first row). The source's other columns are kept as they are (YADE's fabric is NaN
@@ -155,7 +156,7 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
                                (volume0 - volume) / volume0, volume / solid - 1.0, szz, sigma_3, p,
                                q, p != 0.0 ? q / p : 0.0, sxx, syy, szz, sign * value("syz"),
                                sign * value("sxz"), sign * value("sxy")};
-    for (const std::string& c : extra) out.push_back(table.column(c, table_name)[k]);
+    for (const std::vector<double>* values : extra_values) out.push_back((*values)[k]);
     file.append_series(out);
   }
   file.flush();

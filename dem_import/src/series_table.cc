@@ -54,7 +54,9 @@ SeriesTable read_series_table(const std::string& path) {
            " columns");
     for (std::size_t k = 0; k < values.size(); ++k)
       table.values[k].push_back(
-          internal::parse_real(values[k], "column '" + table.columns[k] + "'", fail));
+          internal::parse_real(values[k], [&](const std::string& w) {
+            fail("column '" + table.columns[k] + "': " + w);
+          }));
   }
   if (table.columns.empty()) throw std::runtime_error(source + " is empty (no header line)");
   if (table.rows() == 0) throw std::runtime_error(source + " has a header but no row");

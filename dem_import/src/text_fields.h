@@ -24,14 +24,16 @@ inline std::vector<std::string_view> fields(std::string_view line) {
   return out;
 }
 
+/// The number in `text`; otherwise fail("'<text>' is not a number"), to which the caller adds what
+/// the value is (only then: a dump has millions of values).
 template <class Fail>
-double parse_real(std::string_view text, const std::string& what, Fail&& fail) {
+double parse_real(std::string_view text, Fail&& fail) {
   std::string_view t = text;
   if (!t.empty() && t.front() == '+') t.remove_prefix(1);
   double value = 0.0;
   const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), value);
   if (error != std::errc() || end != t.data() + t.size())
-    fail(what + ": '" + std::string(text.substr(0, 40)) + "' is not a number");
+    fail("'" + std::string(text.substr(0, 40)) + "' is not a number");
   return value;
 }
 
