@@ -39,8 +39,9 @@ import numpy as np
 sys.dont_write_bytecode = True  # no __pycache__ in the repository
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from run import DECK, ROOT, SCENE, SHEAR_TOML  # noqa: E402
+sys.path.insert(0, DECK)
 from export import write_lateral  # noqa: E402
-from run import ROOT, SCENE, SHEAR_TOML  # noqa: E402
 
 WINDOW = 0.1  # sffcal's triaxial.critical_window
 
@@ -81,7 +82,7 @@ def lammps_run(args, work, name, nsteps, every, lateral_formulas=None, note="", 
     if lateral_formulas:
         write_lateral(lateral, lateral_formulas, note)
     cmd = ["mpirun"] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + ["-np", "2",
-           "lmp", "-in", os.path.join(HERE, "shear.in"), "-log", "log.lammps", "-var", "deck", HERE,
+           "lmp", "-in", os.path.join(DECK, "shear.in"), "-log", "log.lammps", "-var", "deck", DECK,
            "-var", "spec", os.path.join(work, "export"), "-var", "lateral", lateral,
            "-var", "lateral_walls", walls, "-var", "p0", repr(SCENE["pressure"]),
            "-var", "nsteps", str(nsteps), "-var", "sample_every", str(every), "-var", "thermo_every", str(20 * every),

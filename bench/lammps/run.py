@@ -44,6 +44,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+DECK = os.path.join(ROOT, "examples", "lammps", "walls")  # shear.in, export.py and the servo
 CPUGUARD = os.path.join(ROOT, "bench", "liggghts", "cpuguard.py")
 
 # The scene (SI units). Monodisperse, so that LAMMPS's constant hooke k_n = E r equals sffcal's
@@ -113,7 +114,7 @@ def lammps_case(np_, walls, args, work, tag):
     """One timed LAMMPS run: walls 'moving' (all six walls as moving regions, the lateral ones
     along sffcal's path) or 'fixed' (lateral walls fixed primitive planes)."""
     log = os.path.join(work, "lammps_%s.log" % tag)
-    cmd = ["lmp", "-in", os.path.join(HERE, "shear.in"), "-log", log, "-var", "deck", HERE,
+    cmd = ["lmp", "-in", os.path.join(DECK, "shear.in"), "-log", log, "-var", "deck", DECK,
            "-var", "spec", os.path.join(work, "export"), "-var", "lateral_walls", walls,
            "-var", "nsteps", str(args.nsteps), "-var", "dt", repr(args.dt), "-var", "rate", repr(args.rate),
            "-var", "E", repr(SCENE["E"]), "-var", "ratio", repr(SCENE["ratio"]), "-var", "mu", repr(SCENE["mu"])]
@@ -172,7 +173,7 @@ def sffcal_path(args, work):
     import h5py
     import numpy as np
     sys.dont_write_bytecode = True  # no __pycache__ in the repository
-    sys.path.insert(0, HERE)
+    sys.path.insert(0, DECK)
     from export import write_lateral
     strain = args.nsteps * args.rate * args.dt
     cfg = os.path.join(work, "path.toml")
@@ -272,7 +273,7 @@ def main():
         t0 = time.time()
         sh([args.sffcal, "prepare", "-c", "prepare.toml", "-o", spec])
         print("run.py: prepared in %.0f s" % (time.time() - t0))
-    sh(["/usr/bin/python3", os.path.join(HERE, "export.py"), spec, os.path.join(work, "export")])
+    sh(["/usr/bin/python3", os.path.join(DECK, "export.py"), spec, os.path.join(work, "export")])
 
     strain = args.nsteps * args.rate * args.dt
     short = args.short_steps * args.rate * args.dt

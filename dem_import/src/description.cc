@@ -123,6 +123,10 @@ ImportDescription read_description(const std::string& path) {
   d.loading.path = r.text("test.path");
   d.loading.confining_stress = r.real("test.confining_stress");
   d.loading.strain_rate = r.real("test.strain_rate");
+  const std::string boundary = r.text_or("test.boundary", "periodic");
+  if (boundary != "periodic" && boundary != "walls")
+    r.fail("test.boundary", "must be \"periodic\" or \"walls\"");
+  d.walls = boundary == "walls";
   const toml::node& control = r.node("test.axis_control");
   if (!control.is_array() || control.as_array()->size() != 3)
     r.fail("test.axis_control", "must be three strings (what holds x, y and z)");

@@ -64,34 +64,59 @@ std::int64_t id_of(double value, const Where& where) {
 
 }  // namespace
 
+void check_box_kind(const DumpFrame& atoms, const ImportDescription& d, const std::string& where) {
+  for (int a = 0; a < 3; ++a) {
+    const std::string axis(1, "xyz"[a]);
+    const bool periodic = atoms.boundary[a].find('p') != std::string::npos;
+    if (!d.walls && atoms.boundary[a] != "pp")
+      throw std::runtime_error(where + ": the box is not periodic along " + axis + " ('" +
+                               atoms.boundary[a] + "'); a box between walls needs boundary = "
+                               "\"walls\" in import.toml's [test] (docs/import.md)");
+    if (d.walls && periodic)
+      throw std::runtime_error(where + ": the box is periodic along " + axis + " ('" +
+                               atoms.boundary[a] + "'), but import.toml's [test] boundary is "
+                               "\"walls\"; a box partly periodic is not imported");
+  }
+  if (atoms.triclinic)
+    throw std::runtime_error(where + ": a sheared (triclinic) cell is not imported; the cell "
+                             "must be an orthogonal box");
+}
+
 runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& contacts,
-                                       const std::array<double, 3>& cell_length,
-                                       const ImportDescription& d, const std::string& atoms_name,
+                                       const FrameBox& box, const ImportDescription& d,
+                                       const std::string& atoms_name,
                                        const std::string& contacts_name) {
   const std::string at = " at timestep " + std::to_string(atoms.timestep);
   const std::string atoms_where = atoms_name + at, contacts_where = contacts_name + at;
+  check_box_kind(atoms, d, atoms_where);
+  const Eigen::Vector3d length(box.length.data());
+  Eigen::Vector3d lower(box.lower.data());
   for (int a = 0; a < 3; ++a)
-    if (atoms.boundary[a] != "pp")
-      throw std::runtime_error(atoms_where + ": the box is not periodic along " +
-                               std::string(1, "xyz"[a]) + " ('" + atoms.boundary[a] +
-                               "'); only periodic cells are imported for now (docs/import.md)");
-  if (atoms.triclinic)
-    throw std::runtime_error(atoms_where + ": a sheared (triclinic) cell is not imported; the "
-                             "cell must be an orthogonal box");
-  const Eigen::Vector3d lower(atoms.lower.data()), length(cell_length.data());
-  for (int a = 0; a < 3; ++a) {
-    // The bounds as the dump wrote them, to 6 significant digits at least.
-    const double written = atoms.upper[a] - atoms.lower[a];
-    const double precision = 1e-5 * std::max({std::abs(atoms.lower[a]), std::abs(atoms.upper[a]),
-                                              std::abs(length[a])});
-    if (!(length[a] > 0.0) || !std::isfinite(length[a]) || !(std::abs(written - length[a]) <= precision))
-      throw std::runtime_error(atoms_where + ": the box is " + std::to_string(written) + " m long along " +
-                               std::string(1, "xyz"[a]) + ", the series row of that step says " +
-                               std::to_string(length[a]) + " m");
+    if (!(length[a] > 0.0) || !std::isfinite(length[a]) || !std::isfinite(lower[a]))
+      throw std::runtime_error(atoms_where + ": the series row of that step gives a " +
+                               (d.walls ? "gap between the walls" : "cell length") + " along " +
+                               std::string(1, "xyz"[a]) + " that is not positive and finite (" +
+                               std::to_string(length[a]) + " m)");
+  if (!d.walls) {
+    lower = Eigen::Vector3d(atoms.lower.data());
+    for (int a = 0; a < 3; ++a) {
+      // The bounds as the dump wrote them, to 6 significant digits at least.
+      const double written = atoms.upper[a] - atoms.lower[a];
+      const double precision = 1e-5 * std::max({std::abs(atoms.lower[a]), std::abs(atoms.upper[a]),
+                                                std::abs(length[a])});
+      if (!(std::abs(written - length[a]) <= precision))
+        throw std::runtime_error(atoms_where + ": the box is " + std::to_string(written) +
+                                 " m long along " + std::string(1, "xyz"[a]) +
+                                 ", the series row of that step says " + std::to_string(length[a]) +
+                                 " m");
+    }
   }
   const Eigen::Vector3d upper = lower + length;
+  // Between walls, positions are as they are; in a periodic cell, a vector is taken to its
+  // nearest image.
   const auto nearest_image = [&](Eigen::Vector3d v) {
-    for (int a = 0; a < 3; ++a) v[a] -= length[a] * std::round(v[a] / length[a]);
+    if (!d.walls)
+      for (int a = 0; a < 3; ++a) v[a] -= length[a] * std::round(v[a] / length[a]);
     return v;
   };
 
@@ -100,6 +125,19 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
   const std::size_t c_id = ac.required("id"), c_body = ac.optional("mol");
   const std::size_t c_x = ac.vector("x", "y", "z"), c_radius = ac.required("radius");
   if (c_x == DumpFrame::npos) ac.required("x");
+  std::array<std::size_t, 6> c_wall{};
+  if (d.walls)
+    for (int w = 0; w < 6; ++w) {
+      const std::string name = kWallNames[w];
+      c_wall[w] = ac.vector(name + "_fx", name + "_fy", name + "_fz");
+      if (c_wall[w] == DumpFrame::npos) ac.required(name + "_fx");
+    }
+  struct WallForce {
+    std::int64_t atom;
+    int wall;
+    Eigen::Vector3d force;  ///< of the wall on the sphere [N]
+  };
+  std::vector<WallForce> wall_forces;
   std::unordered_map<std::int64_t, Atom> atom;
   atom.reserve(atoms.rows());
   std::map<std::int64_t, std::vector<std::int64_t>> members;  // source body id -> atom ids
@@ -114,12 +152,22 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
       throw std::runtime_error(row() + ": a position that is not finite or a radius not positive");
     if (!atom.emplace(id, a).second)
       throw std::runtime_error(row() + ": atom " + std::to_string(id) + " is repeated");
+    if (d.walls)
+      for (int w = 0; w < 6; ++w) {
+        const Eigen::Vector3d f(atoms.at(r, c_wall[w]), atoms.at(r, c_wall[w] + 1),
+                                atoms.at(r, c_wall[w] + 2));
+        if (!f.allFinite())
+          throw std::runtime_error(row() + ": the force of wall " + kWallNames[w] +
+                                   " is not finite");
+        if (f != Eigen::Vector3d::Zero()) wall_forces.push_back({id, w, f});
+      }
     const std::int64_t body = c_body == DumpFrame::npos ? id : id_of(atoms.at(r, c_body), row);
     members[body].push_back(id);
   }
 
   runfile::Snapshot s;
-  s.periodic_cell = {{lower.x(), lower.y(), lower.z()}, {upper.x(), upper.y(), upper.z()}};
+  if (!d.walls)
+    s.periodic_cell = {{lower.x(), lower.y(), lower.z()}, {upper.x(), upper.y(), upper.z()}};
   std::vector<Eigen::Vector3d> centroid;
   for (const auto& [source_id, ids] : members) {
     const std::size_t body = s.particles.size();
@@ -137,7 +185,7 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
                                  std::to_string(first.radius) + ", " +
                                  std::to_string(second.radius) +
                                  " m); the run file's clumps are of equal spheres");
-      // Join the second sphere to the first across the periodic boundary.
+      // Join the second sphere to the first (across a periodic boundary).
       second.position = first.position + nearest_image(second.position - first.position);
       const Eigen::Vector3d between = second.position - first.position;
       if (!(between.norm() < 2.0 * first.radius))
@@ -222,6 +270,47 @@ runfile::Snapshot snapshot_from_frames(const DumpFrame& atoms, const DumpFrame& 
       c.branch[k] = branch[k];
       c.tangential_force[k] = tangential[k];
     }
+    s.contacts.push_back(c);
+  }
+
+  // The walls and their contacts, after the bodies' (the run file's order). A wall's force on a
+  // sphere is a contact of the wall (A) with the sphere's body (B): the normal is the wall's
+  // inward one, the overlap the radius less the centre's distance from the wall's plane.
+  if (!d.walls) return s;
+  for (int w = 0; w < 6; ++w) {
+    runfile::WallRecord wall;
+    wall.axis = w / 2;
+    wall.upper = w % 2;
+    wall.position = wall.upper ? upper[wall.axis] : lower[wall.axis];
+    s.walls.push_back(wall);  // velocity and control: not imported (the test's axis_control says)
+  }
+  for (const WallForce& f : wall_forces) {
+    const Atom& a = atom.at(f.atom);
+    runfile::WallRecord& wall = s.walls[static_cast<std::size_t>(f.wall)];
+    const Eigen::Vector3d n = (wall.upper ? -1.0 : 1.0) * Eigen::Vector3d::Unit(wall.axis);
+    const double overlap = a.radius - n.dot(a.position - wall.position * Eigen::Vector3d::Unit(wall.axis));
+    if (!(overlap > -1e-3 * a.radius))
+      throw std::runtime_error(atoms_where + ": atom " + std::to_string(f.atom) + " has a force of wall " +
+                               kWallNames[f.wall] + ", but its sphere is " +
+                               std::to_string(-overlap) + " m from touching the wall at " +
+                               std::to_string(wall.position) +
+                               " m (the series' wall positions, or the dump's wall columns, are not "
+                               "those of the run)");
+    runfile::ContactRecord c;
+    c.body_b = static_cast<std::int64_t>(a.body);
+    c.wall = f.wall;
+    c.normal_force = f.force.dot(n);
+    const Eigen::Vector3d tangential = f.force - c.normal_force * n;
+    c.sliding = c.normal_force > 0.0 &&
+                tangential.norm() >= d.physics.wall_friction * c.normal_force * (1.0 - 1e-9);
+    c.overlap = overlap;
+    const Eigen::Vector3d point = a.position - (a.radius - 0.5 * overlap) * n;
+    for (int k = 0; k < 3; ++k) {
+      c.point[k] = point[k];
+      c.normal[k] = n[k];
+      c.tangential_force[k] = tangential[k];
+    }
+    wall.normal_force += c.normal_force;
     s.contacts.push_back(c);
   }
   return s;

@@ -15,9 +15,12 @@
 namespace dem_import {
 namespace {
 
-// The source's roles in the series table (docs/import.md).
-const std::vector<std::string> kSeriesRoles = {"step", "time", "sxx", "syy", "szz", "syz",
-                                               "sxz", "sxy", "lx", "ly", "lz"};
+// The source's roles in the series table (docs/import.md): all of a periodic cell's; a box
+// between walls adds the lower walls' positions, and its shear stresses may be absent (frictionless
+// walls give only the normal ones: then 0).
+const std::vector<std::string> kSeriesRoles = {"step", "time", "sxx", "syy", "szz", "lx", "ly", "lz"};
+const std::vector<std::string> kShearRoles = {"syz", "sxz", "sxy"};
+const std::vector<std::string> kWallRoles = {"xlo", "ylo", "zlo"};
 
 }  // namespace
 
@@ -33,11 +36,26 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
                         const std::string& program_version,
                         const std::function<void(const std::string&)>& progress) {
   ImportReport report;
+  // The dumps' first frame first: a box of the wrong kind is named before the series' columns.
+  DumpReader atoms(d.atoms_path, "atoms dump"), contacts(d.contacts_path, "contacts dump");
+  DumpFrame atoms_frame, contacts_frame;
+  if (!atoms.next(atoms_frame)) throw std::runtime_error(atoms.name() + " holds no frame");
+  internal::check_box_kind(atoms_frame, d,
+                           atoms.name() + " at timestep " + std::to_string(atoms_frame.timestep));
   const SeriesTable table = read_series_table(d.series_path);
   const std::string table_name = "the series table " + d.series_path;
   std::map<std::string, const std::vector<double>*> role;
-  for (const std::string& r : kSeriesRoles)
+  const auto take = [&](const std::string& r) {
     role[r] = &table.column(ImportDescription::column(d.series_columns, r), table_name);
+  };
+  for (const std::string& r : kSeriesRoles) take(r);
+  const std::vector<double> zeros(table.rows(), 0.0);
+  bool shear_given = true;
+  for (const std::string& r : kShearRoles)
+    if (!d.walls || table.has(ImportDescription::column(d.series_columns, r))) take(r);
+    else role[r] = &zeros, shear_given = false;
+  if (d.walls)
+    for (const std::string& r : kWallRoles) take(r);
   std::vector<std::string> extra;                   // the source's other columns, kept
   std::vector<const std::vector<double>*> extra_values;
   for (std::size_t k = 0; k < table.columns.size(); ++k) {
@@ -83,15 +101,19 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
        << "). Bodies are numbered in the order of their source ids; the source's velocities are "
           "not imported (zero in the snapshots); the sliding flag is |f_t| >= mu f_n with the "
           "stated friction. Stress: " << d.stress_definition << ".";
+  if (d.walls)
+    note << " A box between six walls: their positions from the series, their contacts from the "
+            "walls' forces on the spheres in the atoms dump; the walls' velocities and control are "
+            "not imported (axis_control says how they moved)."
+         << (shear_given ? "" : " The series has no shear stresses: stress_yz, stress_xz and "
+                                "stress_xy are 0.");
   file.write_note("import", note.str());
 
-  DumpReader atoms(d.atoms_path, "atoms dump"), contacts(d.contacts_path, "contacts dump");
-  DumpFrame atoms_frame, contacts_frame;
   double solid = 0.0;
   std::size_t bodies = 0;
   std::int64_t last_step = 0;
   const double height0 = (*role["lz"])[0];
-  while (atoms.next(atoms_frame)) {
+  for (bool more = true; more; more = atoms.next(atoms_frame)) {
     const std::string at = " (timestep " + std::to_string(atoms_frame.timestep) + ")";
     if (!contacts.next(contacts_frame))
       throw std::runtime_error(contacts.name() + " ends after " + std::to_string(report.snapshots) +
@@ -110,10 +132,13 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
     if (row == row_of_step.end())
       throw std::runtime_error(table_name + " has no row at step " +
                                std::to_string(atoms_frame.timestep) + ", where the dumps have a frame");
-    const std::array<double, 3> cell_length = {(*role["lx"])[row->second], (*role["ly"])[row->second],
-                                               (*role["lz"])[row->second]};
-    runfile::Snapshot s = internal::snapshot_from_frames(atoms_frame, contacts_frame, cell_length,
-                                                         d, atoms.name(), contacts.name());
+    internal::FrameBox box;
+    for (int a = 0; a < 3; ++a) {
+      box.length[a] = (*role[std::string("l") + "xyz"[a]])[row->second];
+      if (d.walls) box.lower[a] = (*role[kWallRoles[a]])[row->second];
+    }
+    runfile::Snapshot s = internal::snapshot_from_frames(atoms_frame, contacts_frame, box, d,
+                                                         atoms.name(), contacts.name());
     if (report.snapshots == 0) {
       solid = runfile::solid_volume(s);
       bodies = s.particles.size();
@@ -135,7 +160,6 @@ ImportReport import_run(const ImportDescription& d, const std::string& output,
   if (contacts.next(contacts_frame))
     throw std::runtime_error(contacts.name() + " has more frames than the " + atoms.name() + " (" +
                              std::to_string(report.snapshots) + ")");
-  if (report.snapshots == 0) throw std::runtime_error(atoms.name() + " holds no frame");
 
   // The series: strains against the first row, the stress compression positive.
   const double sign = d.stress_tension_positive ? -1.0 : 1.0;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# `sffcal import` as a user calls it (docs/import.md): the committed YADE, LAMMPS and LIGGGHTS runs (made by
+# `sffcal import` as a user calls it (docs/import.md): the committed YADE, LAMMPS (periodic and
+# between walls) and LIGGGHTS runs (made by
 # the real programs: scripts/regenerate_import_fixtures.sh) imported, analysed and calibrated, their
 # imported contact stress against the source's own; an existing output kept unless --force; with
 # `yade`, `lmp` and `liggghts` installed (CI installs them), a fresh run of each end to end, LAMMPS on two MPI
@@ -36,6 +37,32 @@ print(f"{worst:.3e}")
 PY
 }
 
+# Between walls: the worst |sigma_walls - sigma_source| / |sigma_source| over the snapshots of RUN,
+# sigma_walls from the imported walls (their contacts' normal forces over the face areas).
+wall_stress_agreement() {
+  "$python" - "$1" <<'PY'
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1], "r") as f:
+    series = f["series"]
+    rows = {int(s): k for k, s in enumerate(series["step"][()])}
+    worst = 0.0
+    for name, snapshot in f["snapshots"].items():
+        walls = snapshot["walls"][()]
+        lo, hi, force = np.zeros(3), np.zeros(3), np.zeros(3)
+        for w in walls:
+            (hi if w["upper"] else lo)[w["axis"]] = w["position"]
+            force[w["axis"]] += 0.5 * w["normal_force"]
+        size = hi - lo
+        stress = force * size / np.prod(size)
+        r = rows[int(snapshot.attrs["step"])]
+        source = np.array([series["stress_" + c][r] for c in ("xx", "yy", "zz")])
+        worst = max(worst, np.abs(stress - source).max() / np.linalg.norm(source))
+print(f"{worst:.3e}")
+PY
+}
+
 fixture=$source_dir/tests/data/import/yade/import.toml
 out=$("$sffcal" import "$fixture" -o run.h5 2>&1) || fail "import of the YADE fixture: $out"
 [[ $out == *"wrote run.h5: 3 snapshots"* ]] && echo "ok   the YADE fixture imports" || fail "import: $out"
@@ -59,15 +86,16 @@ cp run.h5 kept.h5
 cmp -s run.h5 kept.h5 && [[ -z $(ls | grep replacing) ]] \
   && echo "ok   a failed import with --force keeps the file it would replace" || fail "failed --force"
 
-# import_analyse_calibrate NAME DESCRIPTION: import, sff and calibrate, the stress against the source's.
+# import_analyse_calibrate NAME DESCRIPTION [AGREEMENT]: import, sff and calibrate, the stress
+# against the source's (AGREEMENT: stress_agreement, or wall_stress_agreement between walls).
 import_analyse_calibrate() {
-  local name=$1 description=$2 worst
+  local name=$1 description=$2 agreement=${3:-stress_agreement} worst
   "$sffcal" import "$description" -o "$name.h5" > "$name.log" 2>&1 \
     && "$sffcal" sff "$name.h5" --resamples 0 >> "$name.log" 2>&1 \
     || { cat "$name.log"; fail "$name: import and sff"; return; }
-  worst=$(stress_agreement "$name.h5")
+  worst=$("$agreement" "$name.h5")
   "$python" -c "import sys; sys.exit(0 if float('$worst') < 1e-6 else 1)" \
-    && echo "ok   $name: the imported contacts give the source's stress ($worst)" \
+    && echo "ok   $name: the imported contacts give the source's stress ($worst, $agreement)" \
     || fail "$name: stress agreement $worst"
   "$sffcal" calibrate "$name.h5" -o "$name.fit" >> "$name.log" 2>&1 && [ -s "$name.fit/parameters.json" ] \
     && echo "ok   $name: the import calibrates" || { cat "$name.log"; fail "$name: calibrate"; }
@@ -76,6 +104,8 @@ import_analyse_calibrate() {
 import_analyse_calibrate yade_fixture "$fixture"
 import_analyse_calibrate lammps_fixture "$source_dir/tests/data/import/lammps/import.toml"
 import_analyse_calibrate liggghts_fixture "$source_dir/tests/data/import/liggghts/import.toml"
+import_analyse_calibrate lammps_walls_fixture "$source_dir/tests/data/import/lammps_walls/import.toml" \
+  wall_stress_agreement
 
 # Fresh runs, where the programs are installed (CI installs them).
 if command -v yade > /dev/null; then
@@ -90,6 +120,15 @@ if command -v lmp > /dev/null && command -v mpirun > /dev/null; then
     -var seed 3 > lammps.log 2>&1 \
     && import_analyse_calibrate lammps_fresh_2_ranks lammps_run/import.toml \
     || { tail -20 lammps.log; fail "the LAMMPS run"; }
+  # Between walls: a specimen of sffcal's sheared in LAMMPS with sffcal's lateral servo.
+  sed -e 's/^seed = 1$/seed = 3/' -e 's/^bodies = 200$/bodies = 150/' \
+    "$source_dir/examples/lammps/walls/specimen.toml" > prepare.toml
+  "$sffcal" prepare -c prepare.toml -o specimen.h5 > prepare.log 2>&1 \
+    && MPIRUN_FLAGS=--oversubscribe "$source_dir/examples/lammps/walls/run.sh" -np 2 specimen.h5 \
+         lammps_walls_run -var nsteps 4000 > lammps_walls.log 2>&1 \
+    && import_analyse_calibrate lammps_walls_fresh_2_ranks lammps_walls_run/import.toml \
+         wall_stress_agreement \
+    || { tail -20 prepare.log lammps_walls.log; fail "the LAMMPS run between walls"; }
 else
   echo "skip a fresh LAMMPS run: lmp (Debian's lammps) is not installed"
 fi

@@ -1,6 +1,7 @@
 // import.toml: what another code's run is and how its files are laid out (docs/import.md). Every
-// key of [source], [physics] and [test] is required, so that nothing the source did not state is
-// guessed; an unknown key is refused (a misspelt one would otherwise be ignored).
+// key of [source], [physics] and [test] is required (but [test] boundary, a periodic cell unless
+// it says "walls", which the dumps' box must agree with), so that nothing the source did not state
+// is guessed; an unknown key is refused (a misspelt one would otherwise be ignored).
 #pragma once
 
 #include <map>
@@ -20,6 +21,9 @@ struct ImportDescription {
   std::string atoms_path, contacts_path, series_path;  ///< resolved against import.toml's folder
   runfile::RunPhysics physics;
   std::string kind;               ///< the run file's kind, e.g. "triaxial"
+  /// [test] boundary: false, a periodic cell ("periodic", the default); true, a box between six
+  /// planar walls ("walls"), whose positions the series gives and whose forces the atoms dump.
+  bool walls = false;
   runfile::LoadingRecord loading;
   bool stress_tension_positive = false;  ///< the series' stress sign
   std::string stress_definition;         ///< how the source computed it, in words

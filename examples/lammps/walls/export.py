@@ -12,7 +12,7 @@ Writes, in OUT_FOLDER:
                 LAMMPS would otherwise take two whole spheres), its velocity and angular momentum.
   specimen.in   LAMMPS variables: the six wall positions (xlo..zhi), the sphere radius, counts.
   lateral.in    the lateral walls' displacements dxlo dxhi dylo dyhi as formulas of `time`: 0
-                here (fixed walls); run.py and results.py replace it with the path they need.
+                here (fixed walls); bench/lammps/run.py and results.py replace it with the path they need.
 
 Exactly what sffcal's engine holds: sphere centres and radii, clump mass/inertia/velocity/angular
 momentum and wall positions come from /checkpoint bit for bit (printed with %.17g). Not exported:
@@ -99,7 +99,7 @@ def main():
     dens = 0.5 * mass[sph_body] / (4.0 / 3.0 * np.pi * sph_r ** 3)
 
     with open(os.path.join(out, "data.lmp"), "w") as d:
-        d.write("sffcal specimen %s: %d clumps, %d spheres (bench/lammps/export.py)\n\n" %
+        d.write("sffcal specimen %s: %d clumps, %d spheres (examples/lammps/walls/export.py)\n\n" %
                 (os.path.basename(path), nb, ns))
         d.write("%d atoms\n1 atom types\n\n" % ns)
         for a, name in enumerate("xyz"):
@@ -128,7 +128,7 @@ def main():
 
     radii = np.unique(sph_r)
     with open(os.path.join(out, "specimen.in"), "w") as s:
-        s.write("# %s: wall positions [m], sphere radius [m] (bench/lammps/export.py)\n" % path)
+        s.write("# %s: wall positions [m], sphere radius [m] (examples/lammps/walls/export.py)\n" % path)
         for a, name in enumerate("xyz"):
             s.write("variable %slo string %.17g\n" % (name, lo[a]))
             s.write("variable %shi string %.17g\n" % (name, hi[a]))
