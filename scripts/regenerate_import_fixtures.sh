@@ -7,6 +7,9 @@
 #   core. Also the seed of the import fuzz target, fuzz/corpus/import_seed (40 clumps, two frames),
 #   and its corpus entries fuzz/corpus/import/seed_* (each file behind the byte that chooses it:
 #   fuzz/import_fuzzer.cc).
+# yade_walls: tests/data/import/yade_walls/, the same test between six walls
+#   (TriaxialStressController; examples/yade/triaxial.py --walls, 150 clumps, 2 % axial strain, a
+#   snapshot every 1 %): 0.5 MB, 10 s.
 # lammps: tests/data/import/lammps/, 100 clumps in a periodic cell in LAMMPS (Debian's `lammps`;
 #   examples/lammps/run.sh on two MPI ranks, 2 % axial strain, a snapshot every 1 %): 0.45 MB, 15 s.
 # lammps_walls: tests/data/import/lammps_walls/, 200 clumps between six walls: a specimen made by
@@ -18,32 +21,33 @@
 #   examples/liggghts/run.sh on two MPI ranks, 2 % axial strain, a snapshot every 1 %): 0.45 MB,
 #   10 s.
 # An existing fixture is never written over: --force removes it first.
-# Usage: scripts/regenerate_import_fixtures.sh [--force] [yade|lammps|lammps_walls|liggghts ...]
-#        (no name: all four)
+# Usage: scripts/regenerate_import_fixtures.sh [--force] [yade|yade_walls|lammps|lammps_walls|liggghts ...]
+#        (no name: all five)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=tests/data/import/yade
 seed=fuzz/corpus/import_seed
 lammps_out=tests/data/import/lammps
 walls_out=tests/data/import/lammps_walls
+yade_walls_out=tests/data/import/yade_walls
 walls_seed=fuzz/corpus/import_walls_seed
 liggghts_out=tests/data/import/liggghts
 sffcal="${SFFCAL:-$PWD/build/sffcal}"
-usage="usage: scripts/regenerate_import_fixtures.sh [--force] [yade|lammps|lammps_walls|liggghts ...]"
+usage="usage: scripts/regenerate_import_fixtures.sh [--force] [yade|yade_walls|lammps|lammps_walls|liggghts ...]"
 
 force=0
 names=()
 for arg in "$@"; do
   case "$arg" in
     --force) force=1 ;;
-    yade|lammps|lammps_walls|liggghts) names+=("$arg") ;;
+    yade|yade_walls|lammps|lammps_walls|liggghts) names+=("$arg") ;;
     *) echo "$usage" >&2; exit 2 ;;
   esac
 done
-[ ${#names[@]} -gt 0 ] || names=(yade lammps lammps_walls liggghts)
+[ ${#names[@]} -gt 0 ] || names=(yade yade_walls lammps lammps_walls liggghts)
 wanted() { [[ " ${names[*]} " == *" $1 "* ]]; }
-declare -A program=([yade]=yade [lammps]=lmp [lammps_walls]=lmp [liggghts]=liggghts)
-declare -A folders=([yade]="$out $seed" [lammps]="$lammps_out" [lammps_walls]="$walls_out $walls_seed"
+declare -A program=([yade]=yade [yade_walls]=yade [lammps]=lmp [lammps_walls]=lmp [liggghts]=liggghts)
+declare -A folders=([yade]="$out $seed" [yade_walls]="$yade_walls_out" [lammps]="$lammps_out" [lammps_walls]="$walls_out $walls_seed"
                     [liggghts]="$liggghts_out")
 for name in "${names[@]}"; do
   if ! command -v "${program[$name]}" > /dev/null; then
@@ -85,6 +89,12 @@ if wanted yade; then
     byte=$((byte + 1))
   done
   du -sh "$seed"
+fi
+
+if wanted yade_walls; then
+  PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}" yade -n -j1 -x examples/yade/triaxial.py \
+    --walls --clumps 150 --final-strain 0.02 --frame-strain 0.01 --seed 1 --output "$yade_walls_out"
+  du -sh "$yade_walls_out"
 fi
 
 if wanted lammps; then

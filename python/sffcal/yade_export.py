@@ -39,8 +39,19 @@ What is written, all SI (m, N, Pa, s), at YADE's step O.iter:
 - import.toml: [source] yade and its version, [files], [physics] and [test] as given, [series],
   [contacts].
 
-The cell must be periodic and orthogonal: a sheared cell (off-diagonal hSize) is refused. Each
-file is flushed after each frame or row, so a run that is killed keeps what it wrote.
+The cell must be periodic and orthogonal: a sheared cell (off-diagonal hSize) is refused.
+
+Or a box between six walls (`walls=` the ids of six axis-aligned Box bodies in the order xlo xhi
+ylo yhi zlo zhi, utils.aabbWalls's): import.toml then says `boundary = "walls"`; the atoms dump
+adds each wall's force on each sphere (`xlo_fx xlo_fy xlo_fz ... zhi_fz`, the sum of that wall's
+interactions with the sphere, zero where none); the series is `step time sxx syy szz lx ly lz
+xlo ylo zlo unbalanced coordination`: the walls' stress (YADE's force on each wall, O.forces.f,
+the mean of an axis' two walls over the face between the others, tension positive as YADE's),
+the gaps between the walls' inner faces and the lower faces' positions [m]. YADE moves bodies and
+walls after the forces of a step: the positions written are those after the step whose forces
+are written, in both modes.
+
+Each file is flushed after each frame or row, so a run that is killed keeps what it wrote.
 """
 import math
 import os
@@ -72,6 +83,11 @@ SERIES_COLUMNS = ("step time sxx syy szz syz sxz sxy lx ly lz "
                   "coordination mechanical_coordination")
 STRESS_DEFINITION = ("YADE utils.getStress(): Love-Weber, branch vector between the clumps' "
                      "centroids; symmetric part")
+WALL_NAMES = ("xlo", "xhi", "ylo", "yhi", "zlo", "zhi")
+WALL_ATOM_COLUMNS = ATOM_COLUMNS + "".join(f" {w}_f{c}" for w in WALL_NAMES for c in "xyz")
+WALL_SERIES_COLUMNS = "step time sxx syy szz lx ly lz xlo ylo zlo unbalanced coordination"
+WALL_STRESS_DEFINITION = ("the walls' stress: YADE's force on each wall (O.forces.f), the mean of "
+                          "an axis' two walls over the face area between the others")
 # The six components in the series' order: xx yy zz yz xz xy.
 _VOIGT = ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))
 
@@ -120,14 +136,30 @@ class Exporter:
     physics: the [physics] table, every key of PHYSICS_KEYS (SI units); no defaults.
     test: the [test] table, every key of TEST_KEYS (SI units); no defaults.
     version: the source's version, [source] version (default: yade.config.version).
-    stress_definition: [series] stress_definition, the words that say what the stress is.
+    stress_definition: [series] stress_definition, the words that say what the stress is
+        (default: getStress's in a periodic cell, the walls' between walls).
+    walls: None (a periodic cell), or the ids of six Box bodies, the walls xlo xhi ylo yhi zlo
+        zhi (the order of utils.aabbWalls).
     """
 
-    def __init__(self, folder, physics, test, version=None, stress_definition=STRESS_DEFINITION):
+    def __init__(self, folder, physics, test, version=None, stress_definition=None, walls=None):
         import yade.config
         from yade import utils
-        from yade.wrapper import Omega, Sphere
+        from yade.wrapper import Box, Omega, Sphere
         self._O, self._utils, self._Sphere = Omega(), utils, Sphere
+        if walls is not None:
+            walls = [int(w) for w in walls]
+            if len(walls) != 6 or len(set(walls)) != 6:
+                raise ValueError(f"yade_export: walls must be six distinct body ids (xlo xhi ylo "
+                                 f"yhi zlo zhi), not {walls}")
+            if self._O.periodic:
+                raise ValueError("yade_export: walls are given, but the scene is periodic")
+            for w in walls:
+                if self._O.bodies[w] is None or not isinstance(self._O.bodies[w].shape, Box):
+                    raise ValueError(f"yade_export: wall {w} is not a Box body")
+        self._walls = walls
+        if stress_definition is None:
+            stress_definition = STRESS_DEFINITION if walls is None else WALL_STRESS_DEFINITION
         physics = _checked(physics, "physics", PHYSICS_KEYS)
         test = _checked(test, "test", TEST_KEYS)
         for key, value in list(physics.items()) + [(k, test[k]) for k in
@@ -145,7 +177,7 @@ class Exporter:
             "files": {"atoms": "atoms.dump", "contacts": "contacts.dump",
                       "series": "series.txt"},
             "physics": physics,
-            "test": test,
+            "test": test if walls is None else {**test, "boundary": "walls"},
             "series": {"stress_sign": "tension_positive", "stress_definition": stress_definition},
             "contacts": {"force_on": "atom2"},
         }
@@ -166,7 +198,7 @@ class Exporter:
         self._atoms = open(os.path.join(folder, "atoms.dump"), "x")
         self._contacts = open(os.path.join(folder, "contacts.dump"), "x")
         self._series = open(os.path.join(folder, "series.txt"), "x")
-        self._series.write(SERIES_COLUMNS + "\n")
+        self._series.write((SERIES_COLUMNS if walls is None else WALL_SERIES_COLUMNS) + "\n")
         self._series.flush()
         self._last_row = None    # the step of the last series row
         self._last_frame = None  # the step of the last frame
@@ -182,12 +214,42 @@ class Exporter:
         for f in (self._atoms, self._contacts, self._series):
             f.close()
 
+    def faces(self):
+        """Between walls: the lower walls' inner faces and the gaps to the upper ones' [m], each a
+        list x, y, z (refuses a wall turned from the axes)."""
+        lower, gaps = [], []
+        for axis in range(3):
+            faces = []
+            for upper in (0, 1):
+                body = self._O.bodies[self._walls[2 * axis + upper]]
+                if abs(body.state.ori.toAxisAngle()[1]) > 1e-12:
+                    raise ValueError(f"yade_export: wall {body.id} is turned: the walls must be "
+                                     "aligned with the axes")
+                half = body.shape.extents[axis]
+                faces.append(body.state.pos[axis] + (-half if upper else half))
+            lower.append(faces[0])
+            gaps.append(faces[1] - faces[0])
+        return lower, gaps
+
+    def wall_stresses(self):
+        """Between walls: sigma_x, sigma_y, sigma_z [Pa], compression positive: on each axis the
+        mean of its two walls' forces (YADE's O.forces.f of the last step) over the face area."""
+        O = self._O
+        _, gaps = self.faces()
+        stress = []
+        for axis in range(3):
+            f_lo = O.forces.f(self._walls[2 * axis])[axis]  # along +axis, on the wall
+            f_hi = O.forces.f(self._walls[2 * axis + 1])[axis]
+            area = gaps[(axis + 1) % 3] * gaps[(axis + 2) % 3]
+            stress.append(0.5 * (f_hi - f_lo) / area)
+        return stress
+
     def _box(self):
         """The cell's lengths [m]; refuses an aperiodic scene or a sheared cell."""
         O = self._O
         if not O.periodic:
             raise ValueError("yade_export: the scene is not periodic (O.periodic is False): "
-                             "only a periodic cell is imported")
+                             "give the Exporter its six walls (walls=...) or make it periodic")
         h = [[float(O.cell.hSize[i][j]) for j in range(3)] for i in range(3)]
         scale = max(abs(h[k][k]) for k in range(3))
         off = max(abs(h[i][j]) for i in range(3) for j in range(3) if i != j)
@@ -208,6 +270,15 @@ class Exporter:
                 return False
             raise ValueError(f"yade_export: a row at step {step} after one at step "
                              f"{self._last_row}: steps increasing")
+        if self._walls is not None:
+            lower, gaps = self.faces()
+            stress = [-s for s in self.wall_stresses()]  # tension positive, as YADE's
+            values = ([O.time] + stress + gaps + lower
+                      + [utils.unbalancedForce(), utils.avgNumInteractions(considerClumps=True)])
+            self._series.write(f"{step} {_numbers(*values)}\n")
+            self._series.flush()
+            self._last_row = step
+            return True
         lengths = self._box()
         s = utils.getStress()
         phi = utils.fabricTensor()  # 2023.02a: a tuple holding one Matrix3 (two if split)
@@ -233,12 +304,32 @@ class Exporter:
         if self._last_frame is not None and step <= self._last_frame:
             raise ValueError(f"yade_export: a frame at step {step} after one at step "
                              f"{self._last_frame}: one frame per step, steps increasing")
-        lx, ly, lz = self._box()
-        box = f"ITEM: BOX BOUNDS pp pp pp\n0.0 {lx!r}\n0.0 {ly!r}\n0.0 {lz!r}\n"
+        walls = {} if self._walls is None else {w: k for k, w in enumerate(self._walls)}
+        if walls:
+            lower, gaps = self.faces()
+            box = "ITEM: BOX BOUNDS ff ff ff\n" + "".join(
+                f"{lower[a]!r} {lower[a] + gaps[a]!r}\n" for a in range(3))
+        else:
+            lx, ly, lz = self._box()
+            box = f"ITEM: BOX BOUNDS pp pp pp\n0.0 {lx!r}\n0.0 {ly!r}\n0.0 {lz!r}\n"
+
+        # Each wall's force on each sphere, from the wall's interactions.
+        wall_force = {}
+        for i in O.interactions:
+            if not i.isReal or (i.id1 not in walls and i.id2 not in walls):
+                continue
+            if i.id1 in walls and i.id2 in walls:
+                continue  # two walls touching at an edge: no grain in it
+            force = i.phys.normalForce + i.phys.shearForce  # on id2
+            wall, sphere, sign = ((walls[i.id1], i.id2, 1.0) if i.id1 in walls
+                                  else (walls[i.id2], i.id1, -1.0))
+            total = wall_force.setdefault(sphere, [0.0] * 18)
+            for c in range(3):
+                total[3 * wall + c] += sign * force[c]
 
         atoms, spheres = [], set()
         for b in O.bodies:
-            if b is None:
+            if b is None or b.id in walls:
                 continue
             if b.isClump:
                 members = list(b.shape.members.keys())
@@ -251,12 +342,15 @@ class Exporter:
                 raise ValueError(f"yade_export: body {b.id} is a {type(b.shape).__name__}: "
                                  "only spheres (alone or in clumps) are exported")
             mol = b.clumpId if b.isClumpMember else b.id
-            atoms.append(f"{b.id} {mol} {_numbers(*b.state.pos, b.shape.radius)}\n")
+            extra = wall_force.get(b.id, [0.0] * 18) if walls else []
+            atoms.append(f"{b.id} {mol} {_numbers(*b.state.pos, b.shape.radius, *extra)}\n")
             spheres.add(b.id)
+        if set(wall_force) - spheres:
+            raise ValueError("yade_export: a wall touches a body that is not a sphere")
 
         contacts = []
         for i in O.interactions:
-            if not i.isReal:
+            if not i.isReal or i.id1 in walls or i.id2 in walls:
                 continue
             if i.id1 not in spheres or i.id2 not in spheres:
                 raise ValueError(f"yade_export: interaction {i.id1}-{i.id2} is not between two "
@@ -267,7 +361,7 @@ class Exporter:
 
         self.write_row()  # every frame's step is a row's step
         self._atoms.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ATOMS\n{len(atoms)}\n{box}"
-                          f"ITEM: ATOMS {ATOM_COLUMNS}\n")
+                          f"ITEM: ATOMS {WALL_ATOM_COLUMNS if walls else ATOM_COLUMNS}\n")
         self._atoms.writelines(atoms)
         self._atoms.flush()
         self._contacts.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ENTRIES\n{len(contacts)}\n"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `sffcal import` as a user calls it (docs/import.md): the committed YADE, LAMMPS (periodic and
+# `sffcal import` as a user calls it (docs/import.md): the committed YADE and LAMMPS (periodic and
 # between walls) and LIGGGHTS runs (made by
 # the real programs: scripts/regenerate_import_fixtures.sh) imported, analysed and calibrated, their
 # imported contact stress against the source's own; an existing output kept unless --force; with
@@ -106,12 +106,36 @@ import_analyse_calibrate lammps_fixture "$source_dir/tests/data/import/lammps/im
 import_analyse_calibrate liggghts_fixture "$source_dir/tests/data/import/liggghts/import.toml"
 import_analyse_calibrate lammps_walls_fixture "$source_dir/tests/data/import/lammps_walls/import.toml" \
   wall_stress_agreement
+import_analyse_calibrate yade_walls_fixture "$source_dir/tests/data/import/yade_walls/import.toml" \
+  wall_stress_agreement
 
 # Fresh runs, where the programs are installed (CI installs them).
 if command -v yade > /dev/null; then
   PYTHONPATH="$source_dir/python" yade -n -j1 -x "$source_dir/examples/yade/triaxial.py" \
     --clumps 100 --final-strain 0.02 --frame-strain 0.01 --seed 3 --output yade_run > yade.log 2>&1 \
     && import_analyse_calibrate yade_fresh yade_run/import.toml || { tail -20 yade.log; fail "the YADE run"; }
+  cat > bad_walls.py <<'PY'
+from yade import utils
+from yade.wrapper import Omega
+from sffcal.yade_export import Exporter
+O = Omega()
+ids = O.bodies.append(utils.aabbWalls([(0, 0, 0), (1, 1, 1)], thickness=0.1))
+ids.append(O.bodies.append(utils.sphere((0.5, 0.5, 0.5), 0.1)))
+for walls in (ids[:5], ids[1:]):
+    try:
+        Exporter("bad_walls_out", physics={}, test={}, walls=walls)
+    except ValueError as e:
+        print("refused:", e)
+PY
+  out=$(PYTHONPATH="$source_dir/python" yade -n -j1 -x bad_walls.py 2>&1)
+  [[ $out == *"walls must be six distinct body ids"* && $out == *"wall 6 is not a Box body"* \
+     && ! -e bad_walls_out ]] && echo "ok   the YADE exporter refuses walls that are not six boxes" \
+    || fail "the exporter's walls: $out"
+  PYTHONPATH="$source_dir/python" yade -n -j1 -x "$source_dir/examples/yade/triaxial.py" --walls \
+    --clumps 100 --final-strain 0.02 --frame-strain 0.01 --seed 3 --output yade_walls_run \
+    > yade_walls.log 2>&1 \
+    && import_analyse_calibrate yade_walls_fresh yade_walls_run/import.toml wall_stress_agreement \
+    || { tail -20 yade_walls.log; fail "the YADE run between walls"; }
 else
   echo "skip a fresh YADE run: yade is not installed"
 fi

@@ -180,47 +180,68 @@ TEST(ImportLiggghts, ItsContactsGiveLiggghtsOwnStress) {
   EXPECT_LT(worst, 1e-6) << "the contact stress against LIGGGHTS's pair virial";
 }
 
-// A box between six walls (examples/lammps/walls/run.sh: an sffcal specimen sheared in LAMMPS with
-// sffcal's lateral servo). The walls' contacts come from each wall's force on each sphere; their
-// sum over a wall's face is LAMMPS's own wall stress, and each contact's overlap is the one
-// LAMMPS's wall law (k_w = 2 E r, no dashpot) saw.
-TEST(ImportLammpsWalls, ItsWallContactsGiveLammpsOwnWallStress) {
+// A box between six walls. The walls' contacts come from each wall's force on each sphere; their
+// sum over a wall's face is the source's own wall stress, and each contact's overlap is the one the
+// source's wall law (k_w = `wall_stiffness` E r, no dashpot) saw, in the snapshots
+// `overlap_snapshots` (YADE writes the positions after the step of the forces: only its first
+// snapshot, at rest, holds overlaps and forces of one instant). Prints and returns the worst
+// particle-form stress against the walls', in units of p.
+double check_walls_against_source(const std::string& fixture, double wall_stiffness,
+                                  int overlap_snapshots) {
   ImportReport report;
-  const runfile::RunFile file = runfile::RunFile::open(import_fixture("lammps_walls", report));
-  ASSERT_GE(report.snapshots, 2);
+  const runfile::RunFile file = runfile::RunFile::open(import_fixture(fixture, report));
+  EXPECT_GE(report.snapshots, 2);
   const runfile::RunPhysics& physics = file.metadata().physics;
   const std::vector<double> steps = file.series("step");
   double worst_stress = 0.0, worst_overlap = 0.0, worst_balance = 0.0;
   for (int k = 0; k < file.num_snapshots(); ++k) {
     const runfile::Snapshot s = file.read_snapshot(k);
     EXPECT_TRUE(s.periodic_cell.empty());
-    ASSERT_EQ(s.walls.size(), 6u);
+    EXPECT_EQ(s.walls.size(), 6u);
     std::size_t wall_contacts = 0;
     for (const runfile::ContactRecord& c : s.contacts) {
       if (c.body_a >= 0) continue;
       ++wall_contacts;
       const double radius = 0.5 * s.particles[static_cast<std::size_t>(c.body_b)].sphere_diameter;
-      const double spring = 2.0 * physics.youngs_modulus * radius * c.overlap;
-      worst_overlap = std::max(worst_overlap, std::abs(spring - c.normal_force) / c.normal_force);
+      const double spring = wall_stiffness * physics.youngs_modulus * radius * c.overlap;
+      if (k < overlap_snapshots)
+        worst_overlap = std::max(worst_overlap, std::abs(spring - c.normal_force) / c.normal_force);
     }
-    EXPECT_GT(wall_contacts, 50u) << "snapshot " << k;
+    EXPECT_GT(wall_contacts, 50u) << fixture << ", snapshot " << k;
     const sff::SnapshotInput in = sff::snapshot_input(s, physics);
     const auto row = static_cast<std::size_t>(
         std::find(steps.begin(), steps.end(), static_cast<double>(s.step)) - steps.begin());
-    ASSERT_LT(row, steps.size());
+    if (row == steps.size()) {
+      ADD_FAILURE() << "no series row at step " << s.step;
+      return INFINITY;
+    }
     const Eigen::Vector3d source(file.series("stress_xx")[row], file.series("stress_yy")[row],
                                  file.series("stress_zz")[row]);
     worst_stress = std::max(worst_stress, (in.wall_stress - source).cwiseAbs().maxCoeff() / source.norm());
     worst_balance = std::max(worst_balance, sff::analyse_snapshot(in).wall_stress_error);
   }
-  std::printf("%d snapshots: wall stress %.2e from LAMMPS's, k_w overlap %.2e from the wall force, "
-              "particle form %.2e p from the walls\n",
-              report.snapshots, worst_stress, worst_overlap, worst_balance);
-  EXPECT_LT(worst_stress, 1e-12) << "the wall contacts' forces against LAMMPS's wall stress";
+  std::printf("%s, %d snapshots: wall stress %.2e from the source's, k_w overlap %.2e from the "
+              "wall force, particle form %.2e p from the walls\n",
+              fixture.c_str(), report.snapshots, worst_stress, worst_overlap, worst_balance);
+  EXPECT_LT(worst_stress, 1e-12) << "the wall contacts' forces against the source's wall stress";
   EXPECT_LT(worst_overlap, 1e-6) << "the overlaps against the walls' positions in the series";
+  return worst_balance;
+}
+
+// examples/lammps/walls/run.sh: an sffcal specimen sheared in LAMMPS with sffcal's lateral servo;
+// k_w = 2 E r (sffcal's wall), positions and forces of one instant in every snapshot.
+TEST(ImportLammpsWalls, ItsWallContactsGiveLammpsOwnWallStress) {
+  const double balance = check_walls_against_source("lammps_walls", 2.0, 1000);
   // Not an identity (the grains' inertia; LAMMPS starts without sffcal's tangential history):
   // 0.7 % of p here. A wall contact lost or misplaced would show by far more.
-  EXPECT_LT(worst_balance, 0.02) << "the particle-form stress with the wall contacts";
+  EXPECT_LT(balance, 0.02) << "the particle-form stress with the wall contacts";
+}
+
+// examples/yade/triaxial.py --walls: TriaxialStressController's box, walls of the grains' E
+// (k_w = E r).
+TEST(ImportYadeWalls, ItsWallContactsGiveYadesOwnWallStress) {
+  const double balance = check_walls_against_source("yade_walls", 1.0, 1);
+  EXPECT_LT(balance, 0.02) << "the particle-form stress with the wall contacts";  // 0.27 % here
 }
 
 TEST(ImportLammpsWalls, DamagedInputIsRefusedByName) {
