@@ -17,44 +17,14 @@ import argparse
 import os
 import sys
 import time
-import tomllib
 
 from pipeline_tasks import Runner, StageFailed, Task
 from sffcal import matrix as specimen_matrix
+from sffcal import scene as scenes
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 STAGES = ["prepare", "triaxial", "sff", "mean", "calibrate", "fe-check", "report"]
 PY = sys.executable
-
-
-def read_scene(path):
-    try:
-        with open(path, "rb") as f:
-            scene = tomllib.load(f)
-    except (OSError, tomllib.TOMLDecodeError) as e:
-        raise StageFailed(f"scene {path}: {e}")
-    known = [name for name, _ in specimen_matrix.matrix()]
-    for key in ("calibrate_on", "held_back", "other_paths"):
-        for name in scene.get(key, []):
-            if name not in known:
-                raise StageFailed(f"scene {path}: {key} names '{name}', not a specimen of the matrix "
-                                  f"(python/sffcal/matrix.py): {', '.join(known)}")
-    if not scene.get("calibrate_on"):
-        raise StageFailed(f"scene {path}: 'calibrate_on' must name at least one specimen")
-    if "seed" in scene and "seeds" in scene:
-        raise StageFailed(f"scene {path}: give 'seed' (one) or 'seeds' (a list), not both")
-    scene["seeds"] = scene.get("seeds", [scene.get("seed", 1)])
-    seeds = scene["seeds"]
-    if not (isinstance(seeds, list) and seeds and all(isinstance(s, int) and s >= 0 for s in seeds)
-            and len(set(seeds)) == len(seeds)):
-        raise StageFailed(f"scene {path}: 'seeds' must be a list of distinct non-negative integers, "
-                          f"not {seeds!r}")
-    if scene.get("matrix") and (scene.get("dem") or seeds != [1]):
-        raise StageFailed(f"scene {path}: a matrix scene takes run_matrix.sh's configs as they are "
-                          "(seed 1, no [dem] keys)")
-    scene["specimens"] = known if scene.get("matrix") else (
-        scene["calibrate_on"] + scene.get("held_back", []) + scene.get("other_paths", []))
-    return scene
 
 
 class Pipeline:
@@ -67,43 +37,27 @@ class Pipeline:
         return os.path.join(self.out, *parts)
 
     def stems(self, name):
-        """The file stems of a specimen's runs: its name with one seed, <name>_s<seed> with several."""
-        seeds = self.scene["seeds"]
-        return [name] if len(seeds) == 1 else [f"{name}_s{seed}" for seed in seeds]
+        return scenes.stems(self.scene, name)
 
     def instances(self):
-        """(specimen, seed, stem) of every run of the scene."""
-        return [(n, seed, stem) for n in self.scene["specimens"]
-                for seed, stem in zip(self.scene["seeds"], self.stems(n))]
+        return scenes.instances(self.scene)
 
     def run_file(self, stem):
         return self.path("runs", stem + ".h5")
 
     def test_file(self, name):
-        """The DEM test of a specimen that the fit and the checks read: its run with one seed, the
-        mean of its seeds' runs (mean/<name>.h5) with several."""
-        return self.run_file(name) if len(self.scene["seeds"]) == 1 else self.path("mean", name + ".h5")
+        return self.path(scenes.test_stem(self.scene, name))
 
     def write_configs(self):
-        """The scene's specimen configs (sffcal.matrix) plus its [dem] keys (cheap, every start;
-        the records compare contents, so rewriting an unchanged config reruns nothing)."""
+        """The scene's specimen configs (sffcal.scene; cheap, every start: the records compare
+        contents, so rewriting an unchanged config reruns nothing)."""
         folder = self.path("configs")
         os.makedirs(folder, exist_ok=True)
-        with open(os.path.join(ROOT, specimen_matrix.TEMPLATE)) as f:
-            template = f.read()
-        specimens = dict(specimen_matrix.matrix())
-        dem = self.scene.get("dem", {})
-        for name, seed, stem in self.instances():
-            text = specimen_matrix.specimen_config(template, name, specimens[name],
-                                                   bodies=self.scene.get("bodies", 400), seed=seed)
-            # the keys of every specimen, then those of a [dem.<specimen>] table
-            keys = [(k, v) for k, v in dem.items() if not isinstance(v, dict)] + \
-                list(dem.get(name, {}).items())
-            for key, value in keys:
-                try:
-                    text = specimen_matrix.set_key(text, key, value)
-                except KeyError as e:  # the template has no such key
-                    raise StageFailed(f"scene {self.args.scene}: [dem] {e.args[0]}")
+        try:
+            configs = scenes.run_configs(self.scene, ROOT)
+        except scenes.SceneError as e:
+            raise StageFailed(str(e))
+        for stem, text in configs.items():
             with open(os.path.join(folder, stem + ".toml"), "w") as f:
                 f.write(text)
 
@@ -116,8 +70,7 @@ class Pipeline:
         fitted = [self.test_file(n) for n in self.scene["calibrate_on"]]
         held = [self.test_file(n) for n in self.scene.get("held_back", [])]
         # fe-check's element runs drained compression only; the calibration predicts the others
-        checked = [self.test_file(n) for n in self.scene["calibrate_on"] + self.scene.get("held_back", [])
-                   if specimen_matrix.loading_path(n) == "drained_compression"]
+        checked = [self.test_file(n) for n in scenes.checked(self.scene)]
         made_by_triaxial = {r: "triaxial" for r in runs}
         # the tests the fit and the checks read: the runs or the means of their seeds
         made_by_test = {self.test_file(n): "mean" if several else "triaxial" for n in names}
@@ -244,7 +197,10 @@ def main():
         log_file.flush()
 
     try:
-        scene = read_scene(args.scene)
+        try:
+            scene = scenes.read_scene(args.scene)
+        except scenes.SceneError as e:
+            raise StageFailed(str(e))
         stages = selected_stages(args)
         if not os.access(args.sffcal, os.X_OK) and any(s != "report" for s in stages):
             raise StageFailed(f"sffcal binary {args.sffcal} not found: build it (scripts/build.sh) "

@@ -50,6 +50,26 @@ class Page:
         self.add(f"![{caption}](img/{name})", f"*{caption}*")
 
 
+def benchmark_times(out):
+    """The stages' times from Snakemake's benchmark records (workflow/Snakefile:
+    OUT/benchmarks/<stage>_<task>.tsv, column s): per stage the sum over its jobs."""
+    rows, total = [], 0.0
+    for stage in STAGES:
+        jobs = sorted(glob.glob(os.path.join(out, "benchmarks", stage + "_*.tsv")))
+        if not jobs:
+            rows.append((stage, "-", "not run" if stage != "report" else "this report"))
+            continue
+        seconds = {}
+        for job in jobs:
+            with open(job) as f:
+                header, values = f.readline().split("\t"), f.readline().split("\t")
+            seconds[os.path.basename(job)[len(stage) + 1:-4]] = float(values[header.index("s")])
+        total += sum(seconds.values())
+        rows.append((stage, f"{sum(seconds.values()):.1f}",
+                     "; ".join(f"{name} {s:.0f} s" for name, s in seconds.items())))
+    return rows, total
+
+
 def stage_times(out):
     rows, total = [], 0.0
     for stage in STAGES:
@@ -234,10 +254,17 @@ def write_markdown(out, scene_path):
                      f"{r['noise']['volumetric_strain']:.4f}", f"{r['noise']['p_ratio']:.4f}")
                     for name, r in noise.items()])
 
-    page.add("## Timing of the stages",
-             "Wall-clock seconds of each stage's last run (a skipped stage keeps the time of the run "
-             "that made its outputs); tasks of one stage run in parallel, so their times overlap.")
-    rows, total = stage_times(out)
+    if os.path.isdir(os.path.join(out, "benchmarks")):  # made by workflow/Snakefile
+        page.add("## Timing of the stages",
+                 "Snakemake's benchmark records (`benchmarks/`): the wall-clock seconds of each job's "
+                 "last run, summed over the stage's jobs, which may have run in parallel.")
+        rows, total = benchmark_times(out)
+    else:
+        page.add("## Timing of the stages",
+                 "Wall-clock seconds of each stage's last run (a skipped stage keeps the time of the "
+                 "run that made its outputs); tasks of one stage run in parallel, so their times "
+                 "overlap.")
+        rows, total = stage_times(out)
     page.table(["stage", "wall-clock [s]", "tasks"], rows)
     page.add(f"Sum over the stages: {total:.0f} s ({total / 60:.1f} min).")
 
