@@ -3,7 +3,9 @@
 # scripts/pipeline.py on a tiny scene (tests/data/workflow/scene.toml): the same run files, bit for
 # bit (series, snapshots, the SFF tables), the mean tests, the fitted parameters and the element
 # check; a second run with nothing changed runs no job; a changed option of the fit reruns the fit
-# and what follows it only. Skipped (77) where snakemake is not installed (CI installs it).
+# and what follows it only; through the Slurm profile on a one-node Slurm started by the test
+# (scripts/local_slurm.sh: as root, with Debian's slurm-wlm and munge), the same outputs again.
+# Skipped (77) where snakemake is not installed (CI installs it, and slurm-wlm and munge).
 # Usage: workflow_test.sh SFFCAL_BINARY PYTHONPATH
 set -u
 sffcal=$1
@@ -25,8 +27,10 @@ snake() {
 mkdir -p "$work/snake"
 snake > "$work/snake.log" 2>&1 || { tail -30 "$work/snake.log"; fail "snakemake"; }
 
-# Every dataset of every run file and mean test, the parameters and the check's table.
-/usr/bin/python3 - "$work/pipeline" "$work/snake" <<'PY' && echo "ok   the workflow's outputs equal pipeline.py's" || fail "outputs differ"
+# same_outputs A B: every dataset of every run file and mean test, the parameters and the check's
+# table of output folder A equal those of B.
+same_outputs() {
+  /usr/bin/python3 - "$1" "$2" <<'PY'
 import glob
 import json
 import os
@@ -62,6 +66,9 @@ if open(os.path.join(a_root, "fe_check", "summary.csv")).read() != \
 print(f"{len(files)} run files and mean tests compared; differing: {differ or 'none'}")
 sys.exit(1 if differ else 0)
 PY
+}
+same_outputs "$work/pipeline" "$work/snake" && echo "ok   the workflow's outputs equal pipeline.py's" \
+  || fail "the workflow's outputs differ from pipeline.py's"
 [ -s "$work/snake/report/report.md" ] && grep -q "Snakemake's benchmark records" "$work/snake/report/report.md" \
   && echo "ok   the report's stage times come from the benchmark records" || fail "the report"
 
@@ -76,4 +83,26 @@ jobs=$(echo "$out" | sed -n 's/^rule \([a-z_]*\):$/\1/p' | sort | tr '\n' ' ')
 [[ $jobs == "calibrate fe_check report " ]] \
   && echo "ok   a changed fit option reruns calibrate, fe_check and report only" \
   || fail "after a changed option the dry run lists: $jobs"
+sed -i 's/"--points", "12"/"--points", "10"/' "$work/scene.toml"
+
+# Through the Slurm profile on a one-node Slurm started here (as root, where slurm-wlm and munge
+# are installed): the same outputs as the local run.
+cluster="$work/cluster"
+chmod go+x "$work"  # MUNGE's socket lies in it
+if "$source_dir/scripts/local_slurm.sh" start "$cluster" > "$work/cluster.log" 2>&1; then
+  mkdir -p "$work/slurm"
+  SLURM_CONF="$cluster/slurm.conf" snakemake -s "$source_dir/workflow/Snakefile" \
+    --profile "$source_dir/workflow/profiles/slurm" --directory "$work/slurm" \
+    --config scene="$work/scene.toml" sffcal="$sffcal" > "$work/slurm.log" 2>&1 \
+    || { tail -30 "$work/slurm.log"; fail "snakemake on Slurm"; }
+  jobs=$(grep -c "Submitted job .* with external jobid" "$work/slurm.log")
+  same_outputs "$work/snake" "$work/slurm" \
+    && echo "ok   through Slurm ($jobs sbatch jobs) the outputs equal the local run's" \
+    || fail "the Slurm run's outputs differ from the local run's"
+  "$source_dir/scripts/local_slurm.sh" stop "$cluster" || fail "stopping the local Slurm"
+else
+  code=$?
+  cat "$work/cluster.log"
+  [[ $code == 77 ]] && echo "skip the Slurm run: no local Slurm here" || fail "starting a local Slurm"
+fi
 exit $((failures > 0))
