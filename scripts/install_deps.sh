@@ -12,6 +12,7 @@ packages=(
   openmpi-bin  # mpiexec, for the distributed-mesh test
   dpkg-dev gfortran libspooles-dev libarpack2-dev liblapack-dev  # CalculiX with the UMAT (build_calculix.sh)
   python3 python3-h5py python3-markdown python3-matplotlib python3-numpy
+  snakemake  # the main job's workflow (workflow/Snakefile; scripts/pipeline.py, docs/pipeline.md)
   python3-dev pybind11-dev python3-pybind11 python3-pytest  # the compiled module sffcal._core and its tests (docs/python.md)
   python3-pip python3-setuptools  # the pure-Python part installed from python/pyproject.toml (test_install.sh)
   clang libclang-rt-14-dev libomp-dev llvm  # the fuzz targets: libFuzzer, OpenMP, llvm-symbolizer (scripts/fuzz.sh)

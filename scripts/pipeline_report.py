@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The report of the main job: OUT/report/report.md (and the same page as report.html) with the
-plots and tables the pipeline's stages left in OUT (scripts/pipeline.py). A stage that has not
+plots and tables the main job's stages left in OUT (workflow/Snakefile). A stage that has not
 run yet leaves its section saying so.
 
 usage: pipeline_report.py OUT --scene SCENE.toml
@@ -70,25 +70,6 @@ def benchmark_times(out):
     return rows, total
 
 
-def stage_times(out):
-    rows, total = [], 0.0
-    for stage in STAGES:
-        path = os.path.join(out, ".records", stage, "_stage.json")
-        tasks = sorted(glob.glob(os.path.join(out, ".records", stage, "[!_]*.json")))
-        if not os.path.exists(path):
-            rows.append((stage, "-", "not run"))
-            continue
-        with open(path) as f:
-            record = json.load(f)
-        total += record["seconds"]
-        per_task = []
-        for task in tasks:
-            with open(task) as f:
-                per_task.append(f"{os.path.basename(task)[:-5]} {json.load(f)['seconds']:.0f} s")
-        rows.append((stage, f"{record['seconds']:.1f}", "; ".join(per_task)))
-    return rows, total
-
-
 def run_row(path, role):
     with h5py.File(path, "r") as f:
         s = runfile.series(f, ["axial_strain", "eta", "void_ratio", "volumetric_strain", "sigma_3",
@@ -124,13 +105,13 @@ def run_status(log):
 # --dem-ev-tol) for q/p and eps_v; for p/p0 of an undrained test ours (issue 19 gives none).
 TOLERANCES = {"rms_eta": ("q/p (RMS)", 0.1), "rms_volumetric": ("eps_v (RMS)", 0.01),
               "rms_p_ratio": ("p/p0 (RMS)", 0.1)}
-# The quantity of each check label in the noise files of the mean stage (scripts/mean_of_seeds.py).
+# The quantity of each check label in the noise files of the mean stage (sffcal.mean_of_seeds).
 NOISE_OF = {"q/p (RMS)": "eta", "eps_v (RMS)": "volumetric_strain", "p/p0 (RMS)": "p_ratio"}
 
 
 def specimen_of(stem):
     """The specimen of a run: its file stem without the seed suffix _s<seed> of a scene with
-    several seeds (scripts/pipeline.py)."""
+    several seeds (the mean stage)."""
     return re.sub(r"_s\d+$", "", stem)
 
 
@@ -207,14 +188,13 @@ def write_markdown(out, scene_path):
     with open(scene_path, "rb") as f:
         scene = tomllib.load(f)
     fitted, held = scene.get("calibrate_on", []), scene.get("held_back", [])
-    runs = sorted(p for p in glob.glob(os.path.join(out, "runs", "*.h5"))
-                  if not p.endswith(".specimen.h5"))  # `sffcal dem` (matrix) leaves its specimen there
+    runs = sorted(glob.glob(os.path.join(out, "runs", "*.h5")))
     role = {n: "calibration" for n in fitted} | {n: "held back" for n in held}
     page = Page(out)
     page.add("# sffcal main job: report",
              f"Scene `{os.path.relpath(scene_path)}`, output `{out}`, written "
              f"{datetime.datetime.now().isoformat(timespec='seconds')} on {os.cpu_count()} cores. "
-             "Made by `scripts/pipeline.py` (docs/pipeline.md); units SI, compression positive.")
+             "Made by the workflow `workflow/Snakefile` (docs/pipeline.md); units SI, compression positive.")
 
     noise = read_noise(out)
     rows = with_noise(checks(out, fitted, held), noise)
@@ -245,7 +225,7 @@ def write_markdown(out, scene_path):
     if noise:
         page.add("## Seeds and the DEM's noise",
                  "Each specimen was prepared and sheared with every seed of the scene; the fit and the "
-                 "checks read the mean of its runs (`scripts/mean_of_seeds.py`: the series interpolated "
+                 "checks read the mean of its runs (`sffcal.mean_of_seeds`: the series interpolated "
                  "onto the first seed's rows up to the strain all reached, the SFF tables snapshot by "
                  "snapshot). Noise: the RMS over those rows of the standard deviation across the seeds "
                  "(two seeds: RMS difference / √2).")
@@ -254,18 +234,11 @@ def write_markdown(out, scene_path):
                      f"{r['noise']['volumetric_strain']:.4f}", f"{r['noise']['p_ratio']:.4f}")
                     for name, r in noise.items()])
 
-    if os.path.isdir(os.path.join(out, "benchmarks")):  # made by workflow/Snakefile
-        page.add("## Timing of the stages",
-                 "Snakemake's benchmark records (`benchmarks/`): the wall-clock seconds of each job's "
-                 "last run, summed over the stage's jobs, which may have run in parallel.")
-        rows, total = benchmark_times(out)
-    else:
-        page.add("## Timing of the stages",
-                 "Wall-clock seconds of each stage's last run (a skipped stage keeps the time of the "
-                 "run that made its outputs); tasks of one stage run in parallel, so their times "
-                 "overlap.")
-        rows, total = stage_times(out)
-    page.table(["stage", "wall-clock [s]", "tasks"], rows)
+    page.add("## Timing of the stages",
+             "Snakemake's benchmark records (`benchmarks/`): the wall-clock seconds of each job's "
+             "last run, summed over the stage's jobs, which may have run in parallel.")
+    rows, total = benchmark_times(out)
+    page.table(["stage", "wall-clock [s]", "jobs"], rows)
     page.add(f"Sum over the stages: {total:.0f} s ({total / 60:.1f} min).")
 
     page.add("## DEM triaxial tests",
@@ -343,7 +316,8 @@ def write_markdown(out, scene_path):
     else:
         page.add("*Not checked yet (stage fe-check).*")
 
-    page.add("## Logs", "Every task's output: `logs/<stage>_<task>.log`; the pipeline's own: `pipeline.log`.")
+    page.add("## Logs", "Every job's output: `logs/<stage>_<task>.log`; the workflow's own: `pipeline.log` "
+             "(`scripts/pipeline.py`) and Snakemake's `.snakemake/log/`.")
     return "\n".join(page.lines)
 
 
@@ -358,7 +332,7 @@ def to_html(text):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("out", help="output folder of scripts/pipeline.py")
+    parser.add_argument("out", help="output folder of the main job (workflow/Snakefile)")
     parser.add_argument("--scene", required=True)
     args = parser.parse_args()
     page = write_markdown(args.out, args.scene)

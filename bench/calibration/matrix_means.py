@@ -6,7 +6,7 @@ the DEM's noise of each mean beside them.
 usage: bench/calibration/matrix_means.py MEANS FIT [FIT...] [--markdown FILE]
 
 MEANS is the folder of the means and their noise files, MEANS/<specimen>.noise.json
-(scripts/mean_of_seeds.py: OUT/mean of matrix_means.sh, or tests/data/reference/matrix_means);
+(sffcal.mean_of_seeds: OUT/mean of matrix_means.sh, or tests/data/reference/matrix_means);
 each FIT a folder of `sffcal calibrate -o FIT` (ACST, or --model network) on those means. The
 noise of the mean of K seeds is the noise of one run (the RMS over the rows, for a_c over the
 sheared snapshots, of the standard deviation across the seeds) divided by sqrt(K). Undrained tests
@@ -65,7 +65,7 @@ def main():
         noise[os.path.basename(path)[: -len(".noise.json")]] = (
             k, {q: v / math.sqrt(k) for q, v in record["noise"].items() if v is not None})
     if not noise:
-        sys.exit(f"matrix_means.py: no noise file in {args.means} (scripts/mean_of_seeds.py writes them)")
+        sys.exit(f"matrix_means.py: no noise file in {args.means} (python3 -m sffcal.mean_of_seeds writes them)")
     lines = []
     for folder in args.fits:
         path = os.path.join(folder, "parameters.json")

@@ -2,7 +2,7 @@
 # The 500-clump matrix against the mean curve of three seeds of each specimen (issue 19, point 4):
 # every kind of test (isotropic dense, medium and loose; deposits at three loading angles; drained
 # extension; undrained compression), each specimen run for seeds 1-3 (run_seeds.sh), averaged
-# (scripts/mean_of_seeds.py: OUT/mean/<specimen>.h5 and its noise), then fitted with one of each
+# (python3 -m sffcal.mean_of_seeds: OUT/mean/<specimen>.h5 and its noise), then fitted with one of each
 # kind held back: a density (medium), a pressure (200 kPa), a loading angle (45 deg), an extension
 # (200 kPa, and the 45 deg deposit's) and an undrained test (200 kPa). ACST with the defaults
 # (OUT/fit_acst), and the contact-network model (OUT/fit_network) unless MODELS says otherwise.
@@ -27,7 +27,7 @@ mkdir -p "$out/mean"
 for name in $fitted $held; do
   [ -f "$out/mean/$name.h5" ] && continue
   runs=(); for seed in $seeds; do runs+=("$out/seed$seed/$name.h5"); done
-  /usr/bin/python3 scripts/mean_of_seeds.py "${runs[@]}" -o "$out/mean/$name.h5"
+  /usr/bin/python3 -m sffcal.mean_of_seeds "${runs[@]}" -o "$out/mean/$name.h5"
 done
 fit_runs=(); for n in $fitted; do fit_runs+=("$out/mean/$n.h5"); done
 held_runs=(); for n in $held; do held_runs+=("$out/mean/$n.h5"); done

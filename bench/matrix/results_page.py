@@ -4,7 +4,7 @@
 usage: results_page.py [FOLDER=tests/data/reference/matrix] [--img docs/img/matrix]
 
 Reads the reduced run files (reduce_matrix.py) and prints Markdown: the per-test table of
-scripts/sff_table.py (snapshots: e0, peak and last q/p, a_c, a_n, m, last e, SFF errors), then the
+the table of sffcal.sff_table (snapshots: e0, peak and last q/p, a_c, a_n, m, last e, SFF errors), then the
 influence of the initial void ratio, the confining pressure and the loading angle on the
 stress ratio and the anisotropies, as least-squares slopes with their standard errors. Here the
 peak is the largest wall q/p of the series (every 0.2 % of axial strain), with a_c, a_n, m from

@@ -8,5 +8,5 @@ source scripts/python_env.sh  # the package sffcal as built (docs/python.md)
 mkdir -p out/reference
 /usr/bin/time -v ./build/sffcal dem --force -c bench/reference/dense_100kPa.toml \
   -o out/reference/dense_100kPa.h5 2>&1 | tee out/reference/dense_100kPa.log
-/usr/bin/python3 bench/reference/plot_triaxial.py out/reference/dense_100kPa.h5 \
+/usr/bin/python3 -m sffcal.plot_triaxial out/reference/dense_100kPa.h5 \
   bench/reference/dense_100kPa.png

@@ -22,4 +22,4 @@ grep -q "^density_scaling = $scaling " "$out/$name.toml"
 /usr/bin/time -v ./build/sffcal dem --force -c "$out/$name.toml" -o "$out/$name.h5" 2>&1 |
   tee "$out/$name.log"
 ./build/sffcal sff "$out/$name.h5" -o "$out/sff"
-/usr/bin/python3 bench/reference/plot_triaxial.py "$out/$name.h5" "$out/$name.png"
+/usr/bin/python3 -m sffcal.plot_triaxial "$out/$name.h5" "$out/$name.png"

@@ -1,5 +1,5 @@
 """The specimens of the reference test matrix (issue 7; docs/reference-matrix.md) and the writer
-of their TOML configs, used by bench/matrix/make_configs.py and scripts/pipeline.py.
+of their TOML configs, used by bench/matrix/make_configs.py and the main job (sffcal.scene).
 
 Isotropic specimens: three densities (compaction friction 0.15 dense, 0.3 medium, 0.5 loose)
 x p'0 = 100, 200, 300 kPa. Anisotropic specimens: gravity deposition, dense and loose, loading

@@ -1,7 +1,6 @@
 """A scene of the main job (docs/pipeline.md): which specimens of the reference matrix are sheared,
-with which seeds, what is fitted, held back and checked, and each run's DEM config. Read by
-scripts/pipeline.py and by the Snakemake workflow (workflow/Snakefile), so that both run the same
-job.
+with which seeds, what is fitted, held back and checked, and each run's DEM config. Read by the
+Snakemake workflow (workflow/Snakefile) and by its command line (scripts/pipeline.py).
 """
 import os
 import tomllib
@@ -36,9 +35,6 @@ def read_scene(path):
             and len(set(seeds)) == len(seeds)):
         raise SceneError(f"scene {path}: 'seeds' must be a list of distinct non-negative integers, "
                          f"not {seeds!r}")
-    if scene.get("matrix") and (scene.get("dem") or seeds != [1]):
-        raise SceneError(f"scene {path}: a matrix scene takes run_matrix.sh's configs as they are "
-                         "(seed 1, no [dem] keys)")
     scene["specimens"] = known if scene.get("matrix") else (
         scene["calibrate_on"] + scene.get("held_back", []) + scene.get("other_paths", []))
     scene["path"] = path

@@ -1,7 +1,7 @@
 """Several seeds of one specimen (the same config but for the packing seed): their mean curves as
 a reduced run file, and the DEM's own noise, the scatter between seeds (issue 19: the RMS
 difference between two seeds of the same specimen divided by sqrt(2)). Used by the main job's
-`mean` stage (scripts/pipeline.py, scripts/mean_of_seeds.py) and by bench/calibration/."""
+`mean` stage (sffcal.mean_of_seeds, its command line) and by bench/calibration/."""
 import os
 import tomllib
 

@@ -1,8 +1,7 @@
-#!/usr/bin/python3
-"""The mean of several seeds of one specimen, and the DEM's noise between them (the main job's
-`mean` stage, docs/pipeline.md; python/sffcal/seeds.py).
+"""The mean of several seeds of one specimen, and the DEM's noise between them: the command line of
+sffcal.seeds (the main job's `mean` stage, docs/pipeline.md; bench/calibration/).
 
-usage: mean_of_seeds.py -o MEAN.h5 RUN_SEED_A.h5 RUN_SEED_B.h5 [...] [--force]
+usage: python3 -m sffcal.mean_of_seeds -o MEAN.h5 RUN_SEED_A.h5 RUN_SEED_B.h5 [...] [--force]
 
 The runs must be of one specimen: their stored configs equal but for the seed and the thread
 count (else an error names the keys that differ). Writes MEAN.h5, a reduced run file whose /series and /analysis/sff are the means over the runs
@@ -29,26 +28,26 @@ def main():
     parser.add_argument("--force", action="store_true", help="overwrite MEAN.h5 and its noise file")
     args = parser.parse_args()
     if len(args.runs) < 2:
-        sys.exit("mean_of_seeds.py: give at least two runs of the same specimen")
+        sys.exit("sffcal.mean_of_seeds: give at least two runs of the same specimen")
     noise_file = args.output[:-3] + ".noise.json" if args.output.endswith(".h5") else args.output + ".noise.json"
     for path in (args.output, noise_file):
         if os.path.exists(path) and not args.force:
-            sys.exit(f"mean_of_seeds.py: {path} exists (--force to overwrite)")
+            sys.exit(f"sffcal.mean_of_seeds: {path} exists (--force to overwrite)")
     run_seeds = []
     for path in args.runs:
         with h5py.File(path, "r") as f:
             run_seeds.append(int(f.attrs.get("seed", -1)))
             if "analysis/sff" not in f:
-                sys.exit(f"mean_of_seeds.py: {path} has no /analysis/sff (run `sffcal sff` on it)")
+                sys.exit(f"sffcal.mean_of_seeds: {path} has no /analysis/sff (run `sffcal sff` on it)")
     if len(set(run_seeds)) < len(run_seeds):
-        sys.exit(f"mean_of_seeds.py: the runs' seeds repeat ({run_seeds}): the noise needs distinct seeds")
+        sys.exit(f"sffcal.mean_of_seeds: the runs' seeds repeat ({run_seeds}): the noise needs distinct seeds")
     try:
         seeds.check_same_specimen(args.runs)  # before anything is written
         os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-        seeds.mean_run_file(args.runs, args.output, "scripts/mean_of_seeds.py")
+        seeds.mean_run_file(args.runs, args.output, "python3 -m sffcal.mean_of_seeds")
         noise = seeds.noise(args.runs)
     except ValueError as e:
-        sys.exit(f"mean_of_seeds.py: {e}")
+        sys.exit(f"sffcal.mean_of_seeds: {e}")
     record = {"seeds": run_seeds, "runs": [os.path.basename(r) for r in args.runs],
               "noise": noise,
               "definition": "RMS over the common rows (a_c: the common sheared snapshots) of the "

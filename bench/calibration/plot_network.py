@@ -18,7 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench", "reference")
+REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference")
 
 
 def read(path):

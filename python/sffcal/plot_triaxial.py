@@ -1,7 +1,7 @@
-#!/usr/bin/python3
-"""Plots q/p and volumetric strain against axial strain from a triaxial run file.
+"""Plots q/p, the volumetric strain and the void ratio against the axial strain of a triaxial run
+file (the main job's triaxial stage, bench/reference/).
 
-usage: plot_triaxial.py RUN.h5 OUT.png
+usage: python3 -m sffcal.plot_triaxial RUN.h5 OUT.png
 Uses Debian's python3-h5py and python3-matplotlib.
 """
 import sys

@@ -3,7 +3,7 @@
 q/p and volumetric strain against axial strain for smooth and rough platens, and the radial
 displacement of the outer face against height at the last step (the bulge). Compression positive.
 
-    scripts/plot_fe_mesh.py OUT_FOLDER [-o PNG]      (default PNG: OUT_FOLDER/fe_mesh.png)
+    bench/plot_fe_mesh.py OUT_FOLDER [-o PNG]      (default PNG: OUT_FOLDER/fe_mesh.png)
 """
 import argparse
 import os
