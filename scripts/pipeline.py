@@ -192,6 +192,10 @@ def main():
     if code == 0 and args.dry_run:
         console.line("a dry run: nothing was run")
     elif code == 0:
+        report_log = os.path.join(args.output, "logs", "report_report.log")
+        for line in tail(report_log, 20) if os.path.exists(report_log) else []:
+            if line.startswith("checks:"):  # the report's count of passed checks
+                console.line(line)
         console.line(f"finished in {time.monotonic() - console.start:.0f} s; report: "
                      f"{os.path.join(args.output, 'report', 'report.md')}")
     else:

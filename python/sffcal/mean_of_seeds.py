@@ -4,11 +4,11 @@ sffcal.seeds (the main job's `mean` stage, docs/pipeline.md; bench/calibration/)
 usage: python3 -m sffcal.mean_of_seeds -o MEAN.h5 RUN_SEED_A.h5 RUN_SEED_B.h5 [...] [--force]
 
 The runs must be of one specimen: their stored configs equal but for the seed and the thread
-count (else an error names the keys that differ). Writes MEAN.h5, a reduced run file whose /series and /analysis/sff are the means over the runs
-(`sffcal calibrate` and `sffcal fe-check` read it as a run file), and MEAN.noise.json: the seeds,
-the runs and the noise per quantity (q/p, volumetric strain, p/p0: the RMS over the rows of the
-standard deviation across the seeds; for two, RMS(a - b)/sqrt(2); a_c: the same over the sheared
-snapshots).
+count (else an error names the keys that differ). Writes MEAN.h5, a reduced run file whose
+/series and /analysis/sff are the means over the runs (`sffcal calibrate` and `sffcal fe-check`
+read it as a run file), and MEAN.noise.json: the seeds, the runs and the noise per quantity
+(q/p, volumetric strain, p/p0: the RMS over the rows of the standard deviation across the seeds;
+for two, RMS(a - b)/sqrt(2); a_c: the same over the sheared snapshots).
 """
 import argparse
 import json

@@ -130,6 +130,8 @@ fi
   && echo "ok   the report's stage times come from the benchmark records" || fail "the report"
 grep -q "rule triaxial:" "$work/local/pipeline.log" && echo "ok   the console's lines are in pipeline.log" \
   || fail "pipeline.log"
+grep -qE "^ *[0-9]+:[0-9]+ checks: [0-9]+ of [0-9]+ passed" "$work/local.log" \
+  && echo "ok   the console ends with the report's count of checks" || fail "no count of checks on the console"
 
 out=$(pipeline -o "$work/local" 2>&1)
 [[ $out == *"Nothing to be done"* ]] && echo "ok   a second run with nothing changed runs no job" \
