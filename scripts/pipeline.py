@@ -110,12 +110,11 @@ class Console:
 
     def heartbeat(self, done):
         while not done.wait(HEARTBEAT_S):
-            if time.time() - self.last_output < HEARTBEAT_S:
-                continue
-            for log in sorted(glob.glob(os.path.join(self.out, "logs", "*.log"))):
-                if os.path.getmtime(log) > self.last_look:
-                    self.line(f"  running: {os.path.relpath(log, self.out)}: {tail(log, 1)[0]}")
-            self.last_look = time.time()
+            if time.time() - self.last_output >= HEARTBEAT_S:
+                for log in sorted(glob.glob(os.path.join(self.out, "logs", "*.log"))):
+                    if os.path.getmtime(log) > self.last_look:
+                        self.line(f"  running: {os.path.relpath(log, self.out)}: {tail(log, 1)[0]}")
+            self.last_look = time.time()  # each look covers the logs that changed since the last
 
 
 def tail(path, count):

@@ -2,12 +2,13 @@
 # The 500-clump matrix against the mean curve of three seeds of each specimen (issue 19, point 4):
 # every kind of test (isotropic dense, medium and loose; deposits at three loading angles; drained
 # extension; undrained compression), each specimen run for seeds 1-3 (run_seeds.sh), averaged
-# (python3 -m sffcal.mean_of_seeds: OUT/mean/<specimen>.h5 and its noise), then fitted with one of each
-# kind held back: a density (medium), a pressure (200 kPa), a loading angle (45 deg), an extension
-# (200 kPa, and the 45 deg deposit's) and an undrained test (200 kPa). ACST with the defaults
-# (OUT/fit_acst), and the contact-network model (OUT/fit_network) unless MODELS says otherwise.
-# Then each seed's runs are fitted alone with each model, the same split (OUT/seed<S>/fit for
-# ACST, OUT/seed<S>/fit_network), for the standard errors against the spread of refits.
+# (python3 -m sffcal.mean_of_seeds: OUT/mean/<specimen>.h5 and its noise), then fitted with one of
+# each kind held back: a density (medium), a pressure (200 kPa), a loading angle (45 deg), an
+# extension (200 kPa, and the 45 deg deposit's) and an undrained test (200 kPa). ACST with the
+# defaults (OUT/fit_acst), and the contact-network model (OUT/fit_network) unless MODELS says
+# otherwise. Then each seed's runs are fitted alone with each model, the same split
+# (OUT/seed<S>/fit for ACST, OUT/seed<S>/fit_network), for the standard errors against the spread
+# of refits.
 # `bench/calibration/matrix_means.py OUT/mean OUT/fit_acst OUT/fit_network` tabulates the errors
 # against the targets and the noise, `bench/calibration/seed_spread.py OUT [--fit fit_network]`
 # the refits' spread against the standard errors.

@@ -3,10 +3,11 @@
 # (docs/pipeline.md) on a tiny scene (tests/data/workflow/scene.toml): a run interrupted by SIGINT
 # completes when run again; a run file equal, bit for bit, to that of the same config through
 # `sffcal prepare` and `sffcal triaxial` by hand; a second run with nothing changed runs no job; a
-# changed option of the fit reruns the fit and what follows it only; --only, --from and --force select the jobs they say; bad options are refused by
-# name; the paper-size matrix scene plans every specimen of the matrix; through the Slurm profile
-# on a one-node Slurm started by the test (scripts/local_slurm.sh: as root, with Debian's slurm-wlm
-# and munge), every output equal to the local run's.
+# changed option of the fit reruns the fit and what follows it only; --only, --from and --force
+# select the jobs they say; bad options are refused by name and a failed job shows its log; the
+# paper-size matrix scene plans every specimen of the matrix; through the Slurm profile on a
+# one-node Slurm started by the test (scripts/local_slurm.sh: as root, with Debian's slurm-wlm and
+# munge), every output equal to the local run's.
 # Skipped (77) where snakemake is not installed (CI installs it, and slurm-wlm and munge).
 # Usage: workflow_test.sh SFFCAL_BINARY PYTHONPATH
 set -u
