@@ -6,13 +6,15 @@
 // end) and, with --vtu, <case>_NNNN.vtu + <case>.pvd for ParaView.
 //
 //   fe_mesh [--cells N] [--steps S] [--strain E] [--threads T] [--vtu] [--only smooth|rough]
-//           [--distributed] [--no-extrapolation] [-o OUT (default out/fe_mesh)] [PARAMS.json]
+//           [--distributed] [--no-extrapolation] [--full-integration]
+//           [-o OUT (default out/fe_mesh)] [PARAMS.json]
 //   (default: 10 cells per side, 100 steps to 0.3, all threads, examples/acst_toyoura.json;
 //    sigma_3 = 100 kPa, e_0 = 0.8, isotropic fabric)
 // --distributed: the mesh split over the MPI processes (DistributedSolid), e.g.
 //   mpirun -np 2 bench/fe_mesh --distributed --threads 1
 // (process 0 prints the table and writes the files). --no-extrapolation: Newton's first iterate
-// without the extrapolated increment (SolverOptions::extrapolate_predictor).
+// without the extrapolated increment (SolverOptions::extrapolate_predictor). --full-integration:
+// Q1 without B-bar (SolverOptions::mean_dilatation off), the element of CalculiX's C3D8.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 
@@ -42,7 +44,7 @@ int main(int argc, char** argv) {
   std::string only;
   unsigned int cells = 10, steps = 100, threads = 0;
   double strain = 0.3;
-  bool vtu = false, verbose = false, distributed = false, extrapolate = true;
+  bool vtu = false, verbose = false, distributed = false, extrapolate = true, bbar = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
       else if (a == "--verbose") verbose = true;
       else if (a == "--distributed") distributed = true;
       else if (a == "--no-extrapolation") extrapolate = false;
+      else if (a == "--full-integration") bbar = false;
       else if (a == "--only") only = value();
       else if (a == "-o") output = value();
       else parameters_path = a;
@@ -81,9 +84,10 @@ int main(int argc, char** argv) {
     const fe_model::AcstMaterial material(parameters, initial);
     if (prints) std::filesystem::create_directories(output);
     MPI_Barrier(MPI_COMM_WORLD);  // the VTU files are written by every process
-    std::printf("fe_mesh: %s, %u^3 Q1 cells (%u points), sigma_3 = 100 kPa, e_0 = 0.8, to axial "
+    std::printf("fe_mesh: %s, %u^3 Q1 cells%s (%u points), sigma_3 = 100 kPa, e_0 = 0.8, to axial "
                 "strain %.2f in %u steps, %u threads%s\n\n",
-                parameters_path.c_str(), cells, 8 * cells * cells * cells, strain, steps,
+                parameters_path.c_str(), cells, bbar ? " with B-bar" : " without B-bar",
+                8 * cells * cells * cells, strain, steps,
                 dealii::MultithreadInfo::n_threads(),
                 distributed ? (" per process, distributed over " + std::to_string(processes) +
                                " processes").c_str()
@@ -108,6 +112,7 @@ int main(int argc, char** argv) {
       options.solver.verbose = verbose;
       options.distributed = distributed;
       options.solver.extrapolate_predictor = extrapolate;
+      options.solver.mean_dilatation = bbar;
       options.csv_path = output + "/" + c.name + ".csv";
       if (vtu) options.vtu_prefix = output + "/" + c.name;
       const auto t0 = std::chrono::steady_clock::now();

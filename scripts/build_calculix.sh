@@ -4,7 +4,9 @@
 # cannot load a user material at run time, and its material "ABAQUS..." runs that example (linear
 # elasticity with E = PROPS(1)) without a word; this ccx calls libsffcal_umat_calculix.so instead
 # (the UMAT without DROT: CalculiX gives a user material its stress and strain in the material's
-# own axes, model/src/umat_fortran.cc).
+# own axes, model/src/umat_fortran.cc). It also patches ccx (scripts/calculix/) so that Newton uses
+# the UMAT's whole tangent, whose unsymmetric part ccx drops, through its unsymmetric solver;
+# SFFCAL_CCX_SYMMETRIC_TANGENT=1 at run time turns that off.
 #
 # Usage: scripts/build_calculix.sh [BUILD]   (BUILD: the project's build folder, default build; its
 #        model/libsffcal_umat_calculix.so must exist: scripts/build.sh first)
@@ -17,6 +19,7 @@
 # and the build dependencies of calculix-ccx (scripts/install_deps.sh installs them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+repo=$(pwd)
 build=$(cd "${1:-build}" && pwd)
 lib_dir=$build/model
 [ -f "$lib_dir/libsffcal_umat_calculix.so" ] || {
@@ -43,14 +46,24 @@ fi
 
 src=$work/calculix-ccx-$version/ccx_$version/src
 cd "$src"
+# sffcal's addition (scripts/calculix): the user material's whole tangent, through ccx's
+# unsymmetric solver (docs/fe.md, "CalculiX"). Applied once; an older unpatched source gets it too.
+patches=$repo/scripts/calculix
+if ! grep -q sffcal_umat_unsymmetric_wanted nonlingeo.c; then
+  patch -s -p1 < "$patches/unsymmetric_tangent.patch" || {
+    echo "build_calculix: $patches/unsymmetric_tangent.patch does not apply to ccx $version" >&2; exit 1; }
+fi
 # Debian's flags (debian/rules), multithreaded SPOOLES and ARPACK.
 cflags="-O2 -w -I/usr/include/spooles -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
 fflags="-O2 -w -fallow-argument-mismatch"
 make -s -j"$(nproc)" "ccx_$version.a" CFLAGS="$cflags" FFLAGS="$fflags" > "$work/make.log" 2>&1 || {
   tail -20 "$work/make.log" >&2; echo "build_calculix: the ccx objects did not build ($work/make.log)" >&2; exit 1; }
-# ccx's example UMAT out, sffcal's in (the library exports umat_, Abaqus' Fortran name).
+# ccx's example UMAT out, sffcal's in (the library exports umat_, Abaqus' Fortran name), and the
+# assembly of the tangent's unsymmetric part.
+gfortran $fflags -I"$src" -c "$patches/sffcal_e_c3d_unsym.f" -o sffcal_e_c3d_unsym.o
 cp "ccx_$version.a" ccx_sffcal.a
 ar d ccx_sffcal.a umat.o
+ar r ccx_sffcal.a sffcal_e_c3d_unsym.o
 eval "cc $cflags -c ccx_$version.c -o ccx_main.o"
 gfortran -O2 -o "$work/ccx_sffcal" ccx_main.o ccx_sffcal.a -L"$lib_dir" -lsffcal_umat_calculix \
   -Wl,-rpath,"$lib_dir" -lspooles -lpthread -larpack -llapack -lblas -lm -lc -fopenmp

@@ -23,9 +23,10 @@ def new_folder(path, script):
     return os.path.abspath(path)
 
 
-def umat_cards(sffcal, parameters, start):
-    """The cards of one element (`sffcal umat-cards ... --elements 1`) from the start options
-    `start`, and the material's name in them."""
+def umat_cards(sffcal, parameters, start, elements="1"):
+    """The cards of the elements `elements` (`sffcal umat-cards ... --elements 1-27`) from the
+    start options `start`, and the material's name in them."""
     cards = subprocess.run([sffcal, "umat-cards", "--parameters", parameters, *start,
-                            "--elements", "1"], check=True, capture_output=True, text=True).stdout
+                            "--elements", elements], check=True, capture_output=True,
+                           text=True).stdout
     return cards, re.search(r"\*MATERIAL, NAME=(\S+)", cards).group(1)

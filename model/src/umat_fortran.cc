@@ -11,10 +11,15 @@
 // the identity), under ABAQUSNL... the stress R^T sigma R and the logarithmic strain of the
 // stretch U (umat_abaqusnl.f, DROT the increment's rotation for information). Turning the state
 // by DROT there turns it twice: an element turned by 45 degrees and compressed left the turned
-// answer by 1 % (examples/calculix/rotated_element.py --nl; 1.4e-7 without the turn).
+// answer by 1 % (examples/calculix/rotated_element.py --nl; 1.4e-7 without the turn). The
+// CalculiX library also keeps the tangent's unsymmetric part for ccx_sffcal's unsymmetric
+// assembly (umat_tangent_table.h).
 #include <cstddef>
 
 #include "umat_common.h"
+#ifdef SFFCAL_UMAT_MATERIAL_AXES
+#include "umat_tangent_table.h"
+#endif
 
 extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* /*sse*/,
                       double* /*spd*/, double* /*scd*/, double* /*rpl*/, double* /*ddsddt*/,
@@ -35,4 +40,7 @@ extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* /*
   model::umat_detail::umat_body(model::umat_detail::umat_model(cmname, cmname_length), stress,
                                 statev, ddsdde, dstran, ndi, nshr, ntens, nstatv, props, nprops,
                                 drot, pnewdt, noel, npt);
+#ifdef SFFCAL_UMAT_MATERIAL_AXES
+  model::umat_detail::keep_unsymmetric_part(*noel, *npt, ddsdde, *ntens);
+#endif
 }

@@ -1,0 +1,94 @@
+#include "umat_tangent_table.h"
+
+#include <array>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <vector>
+
+namespace model::umat_detail {
+namespace {
+
+// The 15 entries above the diagonal of the antisymmetric 6 x 6 part; the rest follow from them.
+using UnsymmetricPart = std::array<double, 15>;
+
+struct Table {
+  std::mutex mutex;
+  std::vector<std::vector<UnsymmetricPart>> points;  // [noel - 1][npt - 1]
+  std::vector<std::vector<bool>> kept;
+  bool any = false;
+};
+
+Table& table() {
+  static Table t;
+  return t;
+}
+
+constexpr int kTensors = 6;
+
+// The position of entry (i, j), i < j, in UnsymmetricPart.
+int upper_index(int i, int j) { return i * kTensors - i * (i + 1) / 2 + (j - i - 1); }
+
+}  // namespace
+
+void keep_unsymmetric_part(int noel, int npt, const double* ddsdde, int ntens) {
+  if (ntens != kTensors || noel < 1 || npt < 1) return;  // 3D elements only
+  UnsymmetricPart part;
+  for (int i = 0; i < kTensors; ++i)
+    for (int j = i + 1; j < kTensors; ++j)
+      part[upper_index(i, j)] = 0.5 * (ddsdde[i + kTensors * j] - ddsdde[j + kTensors * i]);
+  Table& t = table();
+  const std::lock_guard<std::mutex> lock(t.mutex);
+  const auto e = static_cast<std::size_t>(noel - 1), p = static_cast<std::size_t>(npt - 1);
+  if (t.points.size() <= e) {
+    t.points.resize(e + 1);
+    t.kept.resize(e + 1);
+  }
+  if (t.points[e].size() <= p) {
+    t.points[e].resize(p + 1);
+    t.kept[e].resize(p + 1, false);
+  }
+  t.points[e][p] = part;
+  t.kept[e][p] = true;
+  t.any = true;
+}
+
+}  // namespace model::umat_detail
+
+extern "C" void sffcal_umat_has_unsymmetric_part_(const int* noel, int* found) {
+  using model::umat_detail::table;
+  auto& t = table();
+  const std::lock_guard<std::mutex> lock(t.mutex);
+  *found = (*noel >= 1 && static_cast<std::size_t>(*noel) <= t.points.size() &&
+            !t.points[static_cast<std::size_t>(*noel - 1)].empty())
+               ? 1
+               : 0;
+}
+
+extern "C" void sffcal_umat_unsymmetric_part_(const int* noel, const int* npt, double* d,
+                                              int* found) {
+  using namespace model::umat_detail;
+  auto& t = table();
+  const std::lock_guard<std::mutex> lock(t.mutex);
+  *found = 0;
+  if (*noel < 1 || *npt < 1) return;
+  const auto e = static_cast<std::size_t>(*noel - 1), p = static_cast<std::size_t>(*npt - 1);
+  if (e >= t.points.size() || p >= t.points[e].size() || !t.kept[e][p]) return;
+  const UnsymmetricPart& part = t.points[e][p];
+  for (int i = 0; i < kTensors; ++i) {
+    d[i + kTensors * i] = 0.0;
+    for (int j = i + 1; j < kTensors; ++j) {
+      d[i + kTensors * j] = part[upper_index(i, j)];
+      d[j + kTensors * i] = -part[upper_index(i, j)];
+    }
+  }
+  *found = 1;
+}
+
+extern "C" int sffcal_umat_unsymmetric_wanted(void) {
+  const char* symmetric = std::getenv("SFFCAL_CCX_SYMMETRIC_TANGENT");
+  if (symmetric != nullptr && std::strcmp(symmetric, "1") == 0) return 0;
+  auto& t = model::umat_detail::table();
+  const std::lock_guard<std::mutex> lock(t.mutex);
+  return t.any ? 1 : 0;
+}
