@@ -5,7 +5,8 @@
 #   - C3D8I against Q1 with B-bar, 3 x 3 x 3 to 5 % in 50 and to 10 % in 100;
 #   - the symmetric part of the tangent alone (as Debian's ccx), 3 x 3 x 3 to 5 % in 50;
 #   - refined meshes, 6 and 10 cells a side, to 5 % in 50;
-#   - the cost of the unsymmetric solve: 10 cells, 0.5 % in 5, whole against symmetric.
+#   - the cost of the unsymmetric solve: 10 cells, 0.5 % in 5, whole against symmetric;
+#   - NLGEOM through ABAQUS... and ABAQUSNL..., 10 % in 100, whole against symmetric.
 # Prints each run's rows (ccx, then deal.II) and keeps the runs in OUT.
 #
 # Usage: bench/calculix/run_mesh.sh [BUILD (default build)] [OUT (default out/calculix_mesh)]
@@ -34,3 +35,8 @@ mesh c3d8i_5_6cells --element C3D8I --cells 6 --fe-mesh "$build/bench/fe_mesh"
 mesh c3d8i_5_10cells --element C3D8I --cells 10 --fe-mesh "$build/bench/fe_mesh"
 mesh cost_whole --element C3D8I --cells 10 --strain 0.005 --steps 5
 mesh cost_symmetric --element C3D8I --cells 10 --strain 0.005 --steps 5 --symmetric-tangent
+# Under NLGEOM (no deal.II: small strain), C3D8I to 10 % in 100 through ccx's two interfaces.
+mesh nlgeom_whole --element C3D8I --strain 0.1 --steps 100 --nlgeom
+mesh nlgeom_symmetric --element C3D8I --strain 0.1 --steps 100 --nlgeom --symmetric-tangent
+mesh abaqusnl_whole --element C3D8I --strain 0.1 --steps 100 --nlgeom --abaqusnl
+mesh abaqusnl_symmetric --element C3D8I --strain 0.1 --steps 100 --nlgeom --abaqusnl --symmetric-tangent

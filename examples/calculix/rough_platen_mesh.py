@@ -18,7 +18,8 @@ times deal.II's Newton iterations. In equal increments too small for the UMAT to
 
   examples/calculix/rough_platen_mesh.py --ccx build/calculix/ccx_sffcal --sffcal build/sffcal \\
       --parameters examples/acst_toyoura.json [--cells 3] [--element C3D8I] [--strain 0.05]
-      [--steps 50] [--field-tolerance 1e-8] [--symmetric-tangent] [--csv ROW.csv]
+      [--steps 50] [--field-tolerance 1e-8] [--symmetric-tangent]
+      [--nlgeom [--abaqusnl]] [--csv ROW.csv]
       [--fe-mesh build/bench/fe_mesh [--tolerance 1e-3] [--max-newton-ratio 2]] -o out/ccx_mesh
 """
 import argparse
@@ -34,7 +35,7 @@ import ccx_case
 L, H = 0.025, 0.05  # the eighth's width and height [m]
 
 
-def deck(n, element, strain, steps, field, cards, material, sigma3):
+def deck(n, element, strain, steps, field, cards, material, sigma3, nlgeom):
     node = lambda i, j, k: 1 + i + (n + 1) * (j + (n + 1) * k)
     lines = ["** sffcal: rough-platen mesh, drained triaxial compression", "*NODE, NSET=NALL"]
     for k in range(n + 1):
@@ -67,7 +68,7 @@ def deck(n, element, strain, steps, field, cards, material, sigma3):
     lines += [f"*SOLID SECTION, ELSET=EALL, MATERIAL={material}",
               "*AMPLITUDE, NAME=HELD", "0., 1., 1., 1.",
               "*BOUNDARY", "XMIN, 1, 1", "YMIN, 2, 2", "ZMIN, 3, 3", "TOP, 1, 2",
-              "*STEP, INC=100000",
+              "*STEP, INC=100000" + (", NLGEOM" if nlgeom else ""),
               "*STATIC", f"{1.0 / steps!r}, 1., 1e-6, {1.0 / steps!r}",
               "*CONTROLS, PARAMETERS=FIELD", f"{field!r}, {field!r}",
               "*CONTROLS, PARAMETERS=TIME INCREMENTATION", "4, 8, 9, 60, 10, 4, 12, 30",
@@ -84,10 +85,13 @@ def run_ccx(args):
     n = args.cells
     start = ["--dem", args.dem] if args.dem else ["--pressure", "100e3", "--void-ratio", "0.8"]
     cards, material = ccx_case.umat_cards(args.sffcal, args.parameters, start, f"1-{n ** 3}")
+    if args.abaqusnl:  # ccx's umat_abaqusnl.f: the corotated Cauchy stress and logarithmic strain
+        nl_name = f"ABAQUSNL{material[len('ABAQUS'):]}"
+        cards, material = cards.replace(f"NAME={material}", f"NAME={nl_name}"), nl_name
     sigma3 = -float(re.search(r"\n1, 1, (\S+),", cards).group(1))
     with open(os.path.join(args.output, "mesh.inp"), "w") as f:
         f.write(deck(n, args.element, args.strain, args.steps, args.field_tolerance, cards,
-                     material, sigma3))
+                     material, sigma3, args.nlgeom))
     env = dict(os.environ, SFFCAL_CCX_SYMMETRIC_TANGENT="1" if args.symmetric_tangent else "0")
     t0 = time.time()
     with open(os.path.join(args.output, "ccx.log"), "w") as log:
@@ -167,6 +171,12 @@ def main():
     parser.add_argument("--symmetric-tangent", action="store_true",
                         help="the symmetric part of the tangent alone, as an unpatched ccx "
                              "(SFFCAL_CCX_SYMMETRIC_TANGENT=1)")
+    parser.add_argument("--nlgeom", action="store_true",
+                        help="geometrically nonlinear step (*STEP, NLGEOM): the UMAT gets the "
+                             "Green-Lagrange strain; no comparison with deal.II (small strain)")
+    parser.add_argument("--abaqusnl", action="store_true",
+                        help="with --nlgeom: the material named ABAQUSNL..., ccx's interface with "
+                             "the corotated Cauchy stress and the logarithmic strain")
     parser.add_argument("--csv", help="also write ccx's row to this CSV file")
     parser.add_argument("--fe-mesh", help="bench/fe_mesh: run deal.II on the same mesh and compare")
     parser.add_argument("--tolerance", type=float, help="largest difference from deal.II allowed")
@@ -175,6 +185,10 @@ def main():
     args = parser.parse_args()
     if args.fe_mesh and args.dem:
         sys.exit("rough_platen_mesh: --fe-mesh runs a plain start (100 kPa, e_0 0.8): no --dem")
+    if args.abaqusnl and not args.nlgeom:
+        sys.exit("rough_platen_mesh: --abaqusnl needs --nlgeom")
+    if args.fe_mesh and args.nlgeom:
+        sys.exit("rough_platen_mesh: deal.II's mesh is in small strain: no --fe-mesh with --nlgeom")
     if (args.tolerance is not None or args.max_newton_ratio is not None) and not args.fe_mesh:
         sys.exit("rough_platen_mesh: --tolerance and --max-newton-ratio need --fe-mesh")
     args.output = ccx_case.new_folder(args.output, "rough_platen_mesh")
