@@ -13,6 +13,23 @@ const std::vector<std::string>& loading_path_names() {
   return names;
 }
 
+const std::vector<std::string>& undrained_lateral_names() {
+  static const std::vector<std::string> names = {"equal_strains", "equal_stresses"};
+  return names;
+}
+
+const std::string& undrained_lateral_name(UndrainedLateral lateral) {
+  return undrained_lateral_names()[static_cast<std::size_t>(lateral)];
+}
+
+UndrainedLateral parse_undrained_lateral(const std::string& name) {
+  const std::vector<std::string>& names = undrained_lateral_names();
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] == name) return static_cast<UndrainedLateral>(k);
+  throw std::invalid_argument("unknown undrained lateral control \"" + name +
+                              "\" (\"equal_strains\" or \"equal_stresses\")");
+}
+
 const std::string& loading_path_name(LoadingPath path) {
   return loading_path_names()[static_cast<std::size_t>(path)];
 }
@@ -50,13 +67,23 @@ std::array<double, 2> lateral_targets(LoadingPath path, double p0, double b, dou
 
 double constant_volume_width(double w0, double h0, double h) { return w0 * std::sqrt(h0 / h); }
 
-std::array<std::string, 3> axis_controls(LoadingPath path, double p0, double b, double strain_rate) {
+std::array<double, 2> widths_of_area(double area, double ratio) {
+  const double wx = std::sqrt(area * ratio);
+  return {wx, area / wx};
+}
+
+std::array<std::string, 3> axis_controls(LoadingPath path, double p0, double b, double strain_rate,
+                                         UndrainedLateral lateral) {
   std::ostringstream z;
   z << "strain-controlled, platens " << (axial_direction(path) > 0 ? "closing" : "parting")
     << " at " << strain_rate << " /s";
   if (holds_volume(path)) {
-    const std::string lateral = "kinematic: width w0 sqrt(h0 / h), constant volume";
-    return {lateral, lateral, z.str()};
+    const std::string held =
+        lateral == UndrainedLateral::kEqualStrains
+            ? "kinematic: width w0 sqrt(h0 / h), constant volume"
+            : "kinematic: sigma_x = sigma_y at constant volume (W_x W_y = V0 / h, W_x / W_y "
+              "servo-held)";
+    return {held, held, z.str()};
   }
   std::ostringstream x, y;
   if (path == LoadingPath::kTrueTriaxial) {

@@ -68,6 +68,8 @@ path = "drained_compression"   # drained_compression | drained_extension | const
                                # undrained_compression | undrained_extension | true_triaxial (docs/dem.md)
 confining_stress = 0.0         # sigma_3, or p0 on the constant-p paths [Pa]; 0 = the preparation pressure
 b = 0.0                        # true_triaxial: (sigma_2 - sigma_3) / (sigma_1 - sigma_3) in [0, 1], sigma_2 on y
+undrained_lateral = "equal_strains"  # undrained paths: equal_strains (both widths alike) | equal_stresses
+                               # (sigma_x = sigma_y at constant volume, as in a cell: for deposits)
 strain_rate = 100.0            # axial strain rate [1/s]; within the seed scatter of 20 /s (paper: 0.06 m/s on a 3 mm cube), bench/RESULTS.md
 servo_max_speed = 0.5          # cap on the lateral wall speed [m/s]
 max_axial_strain = 0.45
@@ -160,6 +162,7 @@ RunConfig config_from_table(const toml::table& table, const std::string& toml_te
   c.text = toml_text;
   std::string method = "compaction";
   std::string path = loading_path_name(c.triaxial.path);
+  std::string undrained_lateral = undrained_lateral_name(c.triaxial.undrained_lateral);
   double servo_prep = c.preparation.servo_max_speed;
   double servo_shear = 0.5;
   const std::map<std::string, Setter> setters = {
@@ -202,6 +205,7 @@ RunConfig config_from_table(const toml::table& table, const std::string& toml_te
       {"triaxial.path", text(path)},
       {"triaxial.confining_stress", real(c.triaxial.confining_stress)},
       {"triaxial.b", real(c.triaxial.b)},
+      {"triaxial.undrained_lateral", text(undrained_lateral)},
       {"triaxial.strain_rate", real(c.triaxial.strain_rate)},
       {"triaxial.servo_max_speed", real(servo_shear)},
       {"triaxial.max_axial_strain", real(c.triaxial.max_axial_strain)},
@@ -247,6 +251,11 @@ RunConfig config_from_table(const toml::table& table, const std::string& toml_te
     c.triaxial.path = parse_loading_path(path);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(where + "triaxial.path: " + e.what());
+  }
+  try {
+    c.triaxial.undrained_lateral = parse_undrained_lateral(undrained_lateral);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + "triaxial.undrained_lateral: " + e.what());
   }
   c.preparation.servo_max_speed = servo_prep;
   c.engine.servo.max_speed = servo_shear;
@@ -320,7 +329,8 @@ runfile::RunMetadata run_metadata(const std::string& kind, const RunConfig& conf
   if (kind == "triaxial") {
     const TriaxialOptions& t = config.triaxial;
     m.loading.path = loading_path_name(t.path);
-    m.loading.axis_control = axis_controls(t.path, t.confining_stress, t.b, t.strain_rate);
+    m.loading.axis_control =
+        axis_controls(t.path, t.confining_stress, t.b, t.strain_rate, t.undrained_lateral);
     m.loading.strain_rate = t.strain_rate;
     m.loading.confining_stress = t.confining_stress;
     m.loading.b = t.b;

@@ -118,6 +118,9 @@ std::string TriaxialOptions::validate() const {
     e << "b = " << b << " is read only by path = \"true_triaxial\", not \""
       << loading_path_name(path) << "\"; ";
   }
+  if (undrained_lateral == UndrainedLateral::kEqualStresses && !holds_volume(path))
+    e << "undrained_lateral = \"equal_stresses\" is read only by the undrained paths, not \""
+      << loading_path_name(path) << "\"; ";
   return e.str();
 }
 
@@ -216,24 +219,65 @@ void TriaxialTest::drive_platens() {
   top.velocity = -platen_speed;
 }
 
+namespace {
+// The gain of the lateral servo that holds sigma_x = sigma_y at constant volume (update_lateral_walls).
+constexpr double kEqualStressesGain = 0.5;
+}  // namespace
+
+std::array<std::array<double, 2>, 4> TriaxialTest::take_lateral_readings() {
+  if (resumed_lateral_) return *std::exchange(resumed_lateral_, std::nullopt);
+  std::array<std::array<double, 2>, 4> readings{};
+  for (int k = 0; k < 4; ++k) {
+    const int w = sim_.box_wall(k / 2, k % 2 == 1);
+    readings[static_cast<std::size_t>(k)] = {sim_.wall_forces()[w], sim_.wall_stiffnesses()[w]};
+  }
+  return readings;
+}
+
 void TriaxialTest::update_lateral_walls(double axial_stress) {
   auto& walls = sim_.walls();
   if (holds_volume(options_.path)) {
-    // Each lateral width set, at the end of the coming step, to the one that keeps the volume
-    // with the height the platens will have then: V = V0 to rounding at every step.
+    // Each lateral width set, at the end of the coming step, to one that keeps the volume with
+    // the height the platens will have then: V = V0 to rounding at every step.
     const double dt = sim_.time_step();
     const Wall& bottom = walls[sim_.box_wall(2, false)];
     const Wall& top = walls[sim_.box_wall(2, true)];
     const double height_next =
         (top.position + top.velocity * dt) - (bottom.position + bottom.velocity * dt);
+    std::array<double, 2> width{}, target{};
     for (int axis = 0; axis < 2; ++axis) {
-      Wall& lower = walls[sim_.box_wall(axis, false)];
-      Wall& upper = walls[sim_.box_wall(axis, true)];
-      const double width = upper.position - lower.position;
-      const double target = constant_volume_width(width0_[axis], height0_, height_next);
-      const double speed = 0.5 * (target - width) / dt;
-      lower.velocity = -speed;
-      upper.velocity = speed;
+      width[axis] = walls[sim_.box_wall(axis, true)].position -
+                    walls[sim_.box_wall(axis, false)].position;
+      target[axis] = constant_volume_width(width0_[axis], height0_, height_next);
+    }
+    if (options_.undrained_lateral == UndrainedLateral::kEqualStresses) {
+      // sigma_x = sigma_y: each lateral wall's servo proposes a move towards the mean lateral
+      // stress; the proposals set the widths' ratio, and the volume their product. The forces
+      // are the last step's, so the loop runs a step behind them: proportional, it obeys
+      // z^2 - z + g c = 0 (c >= 1 couples the axes: the two proposals add up), stable for
+      // g c < 1 and critically damped at g c = 1/4; the engine's servo (gain 0.8, its blend and
+      // integral) oscillated here between 0.2 and 1.8 p.
+      ServoParameters servo = sim_.options().servo;
+      servo.gain = kEqualStressesGain;
+      servo.blend = 1.0;
+      servo.integral_time = 0.0;
+      const auto readings = take_lateral_readings();
+      double mean = 0.0;
+      for (int k = 0; k < 4; ++k)
+        mean += 0.25 * readings[k][0] / sim_.wall_area(sim_.box_wall(k / 2, k % 2 == 1));
+      std::array<double, 2> proposed = width;
+      for (int k = 0; k < 4; ++k) {
+        const int w = sim_.box_wall(k / 2, k % 2 == 1);
+        proposed[k / 2] -= servo_displacement(servo, readings[k][0],
+                                              mean * sim_.wall_area(w), readings[k][1], dt,
+                                              sim_.critical_time_step(), sim_.servo_states()[w]);
+      }
+      target = widths_of_area(volume0_ / height_next, proposed[0] / proposed[1]);
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+      const double speed = 0.5 * (target[axis] - width[axis]) / dt;
+      walls[sim_.box_wall(axis, false)].velocity = -speed;
+      walls[sim_.box_wall(axis, true)].velocity = speed;
     }
     return;
   }
@@ -268,15 +312,19 @@ std::vector<double> TriaxialTest::series_row() const {
   const double sxx = sim_.wall_stress(0), syy = sim_.wall_stress(1), szz = sim_.wall_stress(2);
   const double s1 = szz, s3 = 0.5 * (sxx + syy);
   const double p = (s1 + 2.0 * s3) / 3.0, q = s1 - s3;
-  // Against each servo-held wall's own target (the path's); 0 where the walls are kinematic.
+  // Against each servo-held wall's own target (the path's; sigma_x = sigma_y undrained: the
+  // mean lateral stress); 0 where the walls follow the volume alone.
+  const bool equal_stresses = holds_volume(options_.path) &&
+                              options_.undrained_lateral == UndrainedLateral::kEqualStresses;
   double lateral_error = 0.0;
   for (int axis = 0; axis < 2; ++axis)
     for (bool upper : {false, true}) {
       const int w = sim_.box_wall(axis, upper);
-      if (walls[w].mode != WallMode::kStress) continue;
+      if (walls[w].mode != WallMode::kStress && !equal_stresses) continue;
       const double stress = sim_.wall_forces()[w] / sim_.wall_area(w);
-      lateral_error = std::max(lateral_error, std::abs(stress - walls[w].target_stress) /
-                                                  walls[w].target_stress);
+      const double target = equal_stresses ? s3 : walls[w].target_stress;
+      if (target > 0.0)
+        lateral_error = std::max(lateral_error, std::abs(stress - target) / target);
     }
   const Eigen::Matrix3d c = sim_.contact_stress(false);
   const double cp = c.trace() / 3.0, cq = c(2, 2) - 0.5 * (c(0, 0) + c(1, 1));
@@ -338,7 +386,7 @@ void TriaxialTest::check_output_counters(const RunFile& file) const {
 }
 
 CheckpointExtras TriaxialTest::extras() const {
-  return {{"height0", height0_}, {"width0_x", width0_[0]}, {"width0_y", width0_[1]},
+  CheckpointExtras x = {{"height0", height0_}, {"width0_x", width0_[0]}, {"width0_y", width0_[1]},
           {"volume0", volume0_}, {"next_output", next_output_},
           {"next_snapshot", next_snapshot_}, {"next_checkpoint", next_checkpoint_},
           {"worst_lateral_error", worst_lateral_error_}, {"peak_eta", peak_eta_},
@@ -348,6 +396,13 @@ CheckpointExtras TriaxialTest::extras() const {
           // What the last step left on the platens: the first lateral targets after a resume
           // (a restored engine has no wall forces until it steps).
           {"axial_stress", sim_.wall_stress(2)}};
+  // And on the lateral walls, which sigma_x = sigma_y at constant volume reads.
+  for (int k = 0; k < 4; ++k) {
+    const int w = sim_.box_wall(k / 2, k % 2 == 1);
+    x["lateral_force_" + std::to_string(k)] = sim_.wall_forces()[w];
+    x["lateral_stiffness_" + std::to_string(k)] = sim_.wall_stiffnesses()[w];
+  }
+  return x;
 }
 
 TriaxialSummary TriaxialTest::run(RunFile* file,
@@ -405,6 +460,18 @@ TriaxialSummary TriaxialTest::run(RunFile* file,
     if (x.count("axial_stress")) {  // older checkpoints lack it; the drained paths do not use it
       const double axial_stress = need("axial_stress");
       if (lateral_targets_follow_axial_stress(options_.path)) resumed_axial_stress = axial_stress;
+    }
+    if (x.count("lateral_force_0")) {  // older checkpoints lack them: only equal stresses reads them
+      std::array<std::array<double, 2>, 4> readings{};
+      for (int k = 0; k < 4; ++k)
+        readings[static_cast<std::size_t>(k)] = {
+            need_at_least(("lateral_force_" + std::to_string(k)).c_str(), 0.0, false),
+            need_at_least(("lateral_stiffness_" + std::to_string(k)).c_str(), 0.0, false)};
+      resumed_lateral_ = readings;
+    } else if (holds_volume(options_.path) &&
+               options_.undrained_lateral == UndrainedLateral::kEqualStresses) {
+      throw std::invalid_argument("triaxial: the checkpoint has no lateral wall forces, which "
+                                  "undrained_lateral = \"equal_stresses\" needs to resume");
     }
     drive_platens();
     if (file) {

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "dem/run_config.h"
+#include "dem/specimen.h"
 #include "dem/triaxial.h"
 #include "specimen_fixture.h"
 
@@ -80,11 +81,13 @@ struct PathRun {
   TriaxialSummary summary;
 };
 
-PathRun run_path(const Simulation& specimen, LoadingPath path, double b, double max_strain = 0.02) {
+PathRun run_path(const Simulation& specimen, LoadingPath path, double b, double max_strain = 0.02,
+                 UndrainedLateral lateral = UndrainedLateral::kEqualStrains) {
   Simulation sim = testing::shearing_copy(specimen);
   TriaxialOptions options;
   options.path = path;
   options.b = b;
+  options.undrained_lateral = lateral;
   options.max_axial_strain = max_strain;
   options.output_strain_interval = 0.001;
   options.critical_min_strain = 1.0;
@@ -156,6 +159,64 @@ TEST(LoadingPath, TrueTriaxialWithBOneStartsFromTheIsotropicState) {
     EXPECT_NEAR((sy - sx) / (sz - sx), 1.0, 0.03) << "row " << k;
   }
   EXPECT_GT(run.rows.at("q").back(), 0.5 * p0);
+}
+
+// A deposit at 90 degrees (bedding normal along y, docs/dem.md) has unequal lateral axes: held at
+// constant volume with equal lateral strains, its lateral stresses part; with equal_stresses they
+// stay together, as a cell's fluid holds them, and the volume stays constant to rounding.
+TEST(LoadingPath, UndrainedEqualStressesHoldsADepositsLateralStressesTogether) {
+  RunConfig config = parse_run_config(default_run_config_text());
+  config.num_bodies = 150;
+  config.preparation.method = PreparationMethod::kDeposition;
+  config.preparation.loading_angle_deg = 90.0;
+  config.preparation.compaction_friction = 0.15;
+  const Simulation specimen = prepare_specimen(config, nullptr);
+  auto lateral_parting = [](const PathRun& run) {  // the largest |sigma_x - sigma_y| / p past 0.5 %
+    double worst = 0.0;
+    for (std::size_t k = 0; k < run.rows.at("axial_strain").size(); ++k)
+      if (run.rows.at("axial_strain")[k] > 0.005)
+        worst = std::max(worst, std::abs(run.rows.at("wall_stress_xx")[k] -
+                                         run.rows.at("wall_stress_yy")[k]) /
+                                    run.rows.at("p")[k]);
+    return worst;
+  };
+  const PathRun strains = run_path(specimen, LoadingPath::kUndrainedCompression, 0.0, 0.03);
+  const PathRun stresses = run_path(specimen, LoadingPath::kUndrainedCompression, 0.0, 0.03,
+                                    UndrainedLateral::kEqualStresses);
+  for (const PathRun* run : {&strains, &stresses}) {
+    const auto& ev = run->rows.at("volumetric_strain");
+    EXPECT_LT(std::max(std::abs(*std::max_element(ev.begin(), ev.end())),
+                       std::abs(*std::min_element(ev.begin(), ev.end()))),
+              1e-12);
+    EXPECT_NEAR(run->rows.at("axial_strain").back(), 0.03, 1e-4);
+  }
+  // Measured: 0.148 with equal strains, 0.0093 with equal stresses.
+  EXPECT_GT(lateral_parting(strains), 0.1) << "equal strains";
+  EXPECT_LT(lateral_parting(stresses), 0.02) << "equal stresses";
+  // Each wall against the mean lateral stress: 0.026 (the drained servo on this specimen holds
+  // its walls within 0.015 of sigma_3; here the two walls of an axis move together, so the
+  // contact noise between them stays).
+  EXPECT_LT(stresses.summary.worst_lateral_error, 0.04);
+}
+
+TEST(LoadingPath, EqualStressesIsReadOnlyByTheUndrainedPaths) {
+  TriaxialOptions options;
+  options.undrained_lateral = UndrainedLateral::kEqualStresses;
+  EXPECT_NE(options.validate().find("read only by the undrained paths"), std::string::npos)
+      << options.validate();
+  options.path = LoadingPath::kUndrainedExtension;
+  EXPECT_EQ(options.validate(), "");
+  std::string text = default_run_config_text();
+  text.replace(text.find("undrained_lateral = \"equal_strains\""), 35,
+               "undrained_lateral = \"equal_pressures\"");
+  try {
+    parse_run_config(text, "t.toml");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("t.toml: triaxial.undrained_lateral: unknown"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // Undrained compression of a very loose specimen (compacted with friction 1): the grains that

@@ -129,9 +129,10 @@ struct Killed : std::runtime_error {
   Killed() : std::runtime_error("killed") {}
 };
 
-TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
-  const Simulation specimen = testing::compacted_specimen(80, 0.2, 9);
-  const TriaxialOptions options = short_test(0.015);
+// Runs `options` on the specimen whole, and again killed past 3.7 % and resumed from its file:
+// the two runs must be the same, bit for bit.
+void expect_resume_gives_the_uninterrupted_run(const Simulation& specimen,
+                                               const TriaxialOptions& options) {
   const runfile::RunMetadata meta{"triaxial", "", 9, "test"};
 
   const std::string whole_path = temp_path("whole.h5");
@@ -152,6 +153,20 @@ TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
   }
   const Simulation resumed = resume(killed_path, whole, options);
   expect_same_run(whole_path, whole, killed_path, resumed);
+}
+
+TEST(RunFile, ResumeAfterAKillGivesTheUninterruptedRun) {
+  expect_resume_gives_the_uninterrupted_run(testing::compacted_specimen(80, 0.2, 9),
+                                            short_test(0.015));
+}
+
+// sigma_x = sigma_y at constant volume reads the lateral walls' forces of the last step, which a
+// restored engine has not got: the checkpoint carries them.
+TEST(RunFile, ResumeOfAnUndrainedRunWithEqualLateralStressesGivesTheUninterruptedRun) {
+  TriaxialOptions options = short_test(0.015);
+  options.path = LoadingPath::kUndrainedCompression;
+  options.undrained_lateral = UndrainedLateral::kEqualStresses;
+  expect_resume_gives_the_uninterrupted_run(testing::compacted_specimen(80, 0.2, 9), options);
 }
 
 // A saved state that was edited or damaged (the arrays of a checkpoint are plain datasets) is

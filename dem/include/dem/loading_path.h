@@ -20,6 +20,19 @@ enum class LoadingPath {
   kTrueTriaxial,          ///< constant p0 and b = (sigma_y - sigma_x) / (sigma_z - sigma_x)
 };
 
+/// How the undrained paths share the volume between the two lateral axes.
+enum class UndrainedLateral {
+  kEqualStrains,   ///< both widths scaled alike, W = w0 sqrt(h0 / h) (the lateral stresses free)
+  kEqualStresses,  ///< sigma_x = sigma_y, as a cell's fluid holds them: the widths' product is
+                   ///< V0 / h, their ratio servo-held (a deposit's two lateral axes differ)
+};
+
+/// The config spellings ("equal_strains", "equal_stresses"), in the order of the enum.
+const std::vector<std::string>& undrained_lateral_names();
+const std::string& undrained_lateral_name(UndrainedLateral lateral);
+/// Throws std::invalid_argument naming the accepted spellings.
+UndrainedLateral parse_undrained_lateral(const std::string& name);
+
 /// The config spellings ("drained_compression", ...), in the order of the enum.
 const std::vector<std::string>& loading_path_names();
 const std::string& loading_path_name(LoadingPath path);
@@ -46,7 +59,11 @@ std::array<double, 2> lateral_targets(LoadingPath path, double p0, double b, dou
 /// h, with both lateral widths scaled alike: W = w0 sqrt(h0 / h).
 double constant_volume_width(double w0, double h0, double h);
 
+/// The lateral widths of area (product) `area` whose ratio W_x / W_y is `ratio`.
+std::array<double, 2> widths_of_area(double area, double ratio);
+
 /// How each axis (x, y, z) is held, in words, for the run file and `sffcal info`.
-std::array<std::string, 3> axis_controls(LoadingPath path, double p0, double b, double strain_rate);
+std::array<std::string, 3> axis_controls(LoadingPath path, double p0, double b, double strain_rate,
+                                         UndrainedLateral lateral = UndrainedLateral::kEqualStrains);
 
 }  // namespace dem

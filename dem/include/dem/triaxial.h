@@ -6,8 +6,10 @@
 // eps_a = (H0 - H) / H0, eps_x = (W0 - W) / W0, eps_v = (V0 - V) / V0 (eps_a < 0 in extension).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,9 @@ struct TriaxialOptions {
   double confining_stress = 100e3;
   /// True triaxial: (sigma_2 - sigma_3) / (sigma_1 - sigma_3) in [0, 1], sigma_2 on y; 0 elsewhere.
   double b = 0.0;
+  /// Undrained paths: how the lateral axes share the volume (equal strains, or sigma_x = sigma_y as
+  /// in a cell, which a deposit's unequal lateral axes need); the others refuse equal stresses.
+  UndrainedLateral undrained_lateral = UndrainedLateral::kEqualStrains;
   /// Axial strain rate [1/s]. The paper: 20 /s (0.06 m/s on 3 mm); 100 /s stays within the seed
   /// scatter of it at 100 kPa (bench/RESULTS.md, "Run time against error"): keep I < 1e-3 elsewhere.
   double strain_rate = 100.0;
@@ -124,6 +129,10 @@ class TriaxialTest {
   /// Sets the lateral walls for the next step: the path's stress targets at the axial stress
   /// [Pa] the last step left, or the velocities that keep the volume (undrained).
   void update_lateral_walls(double axial_stress);
+  /// The force [N] and stiffness [N/m] the last step left on each lateral wall (x lower, x upper,
+  /// y lower, y upper): the engine's, or once after a resume the checkpoint's (a restored engine
+  /// has none until it steps).
+  std::array<std::array<double, 2>, 4> take_lateral_readings();
   bool critical_state(std::size_t* window_start) const;
   CheckpointExtras extras() const;
 
@@ -138,6 +147,8 @@ class TriaxialTest {
   /// summary's steps count from it, a resumed run's included.
   std::int64_t test_start_step_ = 0;
   int direction_ = 1;  ///< axial_direction(options_.path)
+  /// The lateral readings a resumed checkpoint holds, until the first step takes them.
+  std::optional<std::array<std::array<double, 2>, 4>> resumed_lateral_;
   /// Per output row: |eps_a|, q/p, eps_v and p / p0 (the critical-state test).
   std::vector<double> history_strain_, history_eta_, history_volume_, history_mean_stress_;
 };
