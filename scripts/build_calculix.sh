@@ -47,11 +47,20 @@ fi
 src=$work/calculix-ccx-$version/ccx_$version/src
 cd "$src"
 # sffcal's addition (scripts/calculix): the user material's whole tangent, through ccx's
-# unsymmetric solver (docs/fe.md, "CalculiX"). Applied once; an older unpatched source gets it too.
+# unsymmetric solver (docs/fe.md, "CalculiX"). The patch applied is kept beside the source: a
+# changed patch replaces it (the old one reversed first), an unchanged one is left.
 patches=$repo/scripts/calculix
-if ! grep -q sffcal_umat_unsymmetric_wanted nonlingeo.c; then
-  patch -s -p1 < "$patches/unsymmetric_tangent.patch" || {
-    echo "build_calculix: $patches/unsymmetric_tangent.patch does not apply to ccx $version" >&2; exit 1; }
+applied=.sffcal_applied.patch
+if ! cmp -s "$patches/unsymmetric_tangent.patch" "$applied"; then
+  if [ -f "$applied" ]; then
+    patch -s -R -p1 < "$applied" || {
+      echo "build_calculix: cannot take the earlier patch out of $src: remove $work and build again" >&2; exit 1; }
+  fi
+  rm -f "$applied"
+  patch -s -N -p1 < "$patches/unsymmetric_tangent.patch" || {
+    echo "build_calculix: $patches/unsymmetric_tangent.patch does not apply to the source in $src" \
+      "(patched before?): remove $work and build again" >&2; exit 1; }
+  cp "$patches/unsymmetric_tangent.patch" "$applied"
 fi
 # Debian's flags (debian/rules), multithreaded SPOOLES and ARPACK.
 cflags="-O2 -w -I/usr/include/spooles -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"

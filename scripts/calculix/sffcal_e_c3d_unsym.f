@@ -19,6 +19,9 @@
 !     the nodal displacements, with engineering shear: B = sym(F^T
 !     grad_0 N) of the Green-Lagrange strain in a step with NLGEOM (F
 !     from the displacements), the small strain otherwise (F = I).
+!     A material named ABAQUSNL... under NLGEOM: umat_abaqusnl.f turns
+!     the symmetric part by U^-1 in each index before ccx assembles it;
+!     D_a is turned alike (sffcal_turn_by_inverse_stretch).
 !
 !     Elements: C3D8, C3D8I, C3D20 and C3D20R, at ccx's own points
 !     (gauss.f) with its own shape functions; nope = their nodes. Other
@@ -27,15 +30,18 @@
 !     without sffcal's material.
 !
       subroutine sffcal_e_c3d_unsym(co,kon,ipkon,lakonl,nelem,vold,mi,
-     &  iperturb,ielorien,norien,s,nope)
+     &  iperturb,ielorien,norien,ielmat,matname,s,nope)
 !
       implicit none
 !
+      logical corotated
+!
       character*8 lakonl
+      character*80 matname(*)
 !
       integer kon(*),ipkon(*),nelem,mi(*),iperturb(*),
-     &  ielorien(mi(3),*),norien,nope,indexe,mint3d,kk,i,j,k,m,jj,ll,
-     &  found,iflag,said_type,said_orientation
+     &  ielorien(mi(3),*),norien,ielmat(mi(3),*),nope,indexe,mint3d,
+     &  kk,i,j,k,m,jj,ll,found,iflag,said_type,said_orientation
 !
       real*8 co(3,*),vold(0:mi(2),*),s(60,60),xl(3,23),shp(4,23),
      &  u(3,23),xsj,xi,et,ze,weight,da(6,6),f(3,3),b(6,60),db(6,60),wj
@@ -87,6 +93,9 @@
           return
         endif
       endif
+!
+      corotated=(iperturb(2).eq.1).and.
+     &  (matname(ielmat(1,nelem))(1:8).eq.'ABAQUSNL')
 !
       indexe=ipkon(nelem)
       do i=1,nope
@@ -144,6 +153,8 @@
           enddo
         enddo
 !
+        if(corotated) call sffcal_turn_by_inverse_stretch(f,da)
+!
 !       B(:,3(i-1)+k): the strain's derivative by node i's u_k
 !
         do i=1,nope
@@ -175,6 +186,74 @@
               s(jj,ll)=s(jj,ll)+b(j,jj)*db(j,ll)*wj
             enddo
           enddo
+        enddo
+      enddo
+!
+      return
+      end
+!
+!     D_a turned as umat_abaqusnl.f turns the symmetric part: the tensor
+!     A_ijkl = D_a(I(ij),J(kl)) (anisotropic.f's identification) turned
+!     by T = U^-1 in each index, U the right stretch of F: C = F^T F =
+!     Z diag(w) Z^T, U^-1 = Z diag(w^-1/2) Z^T.
+!
+      subroutine sffcal_turn_by_inverse_stretch(f,da)
+!
+      implicit none
+!
+      integer i,j,k,l,m,n,o,p,ier,matz,nn,iv(3,3),ir(6),ic(6)
+!
+      real*8 f(3,3),da(6,6),c(3,3),w(3),z(3,3),fv1(3),fv2(3),t(3,3),
+     &  a(3,3,3,3),sum
+!
+      data iv /1,4,5,4,2,6,5,6,3/
+      data ir /1,2,3,1,1,2/
+      data ic /1,2,3,2,3,3/
+!
+      do i=1,3
+        do j=1,3
+          c(i,j)=f(1,i)*f(1,j)+f(2,i)*f(2,j)+f(3,i)*f(3,j)
+        enddo
+      enddo
+      nn=3
+      matz=1
+      call rs(nn,nn,c,w,matz,z,fv1,fv2,ier)
+      if(ier.ne.0) then
+        write(*,*) '*ERROR in sffcal_turn_by_inverse_stretch: ',
+     &    'no eigenvalues of C'
+        call exit(201)
+      endif
+      do i=1,3
+        do j=1,3
+          t(i,j)=0.d0
+          do m=1,3
+            t(i,j)=t(i,j)+z(i,m)*z(j,m)/dsqrt(w(m))
+          enddo
+        enddo
+      enddo
+      do i=1,3
+        do j=1,3
+          do k=1,3
+            do l=1,3
+              a(i,j,k,l)=da(iv(i,j),iv(k,l))
+            enddo
+          enddo
+        enddo
+      enddo
+      do i=1,6
+        do j=1,6
+          sum=0.d0
+          do m=1,3
+            do n=1,3
+              do o=1,3
+                do p=1,3
+                  sum=sum+a(m,n,o,p)*t(ir(i),m)*t(ic(i),n)*
+     &              t(ir(j),o)*t(ic(j),p)
+                enddo
+              enddo
+            enddo
+          enddo
+          da(i,j)=sum
         enddo
       enddo
 !
