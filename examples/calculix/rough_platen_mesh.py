@@ -98,6 +98,10 @@ def run_ccx(args):
         code = subprocess.run([args.ccx, "-i", "mesh"], cwd=args.output, stdout=log,
                               stderr=subprocess.STDOUT, env=env).returncode
     wall = time.time() - t0
+    for name in ("mesh.sta", "mesh.dat"):
+        if not os.path.exists(os.path.join(args.output, name)):
+            sys.exit(f"rough_platen_mesh: ccx (exit {code}) wrote no {name}: see "
+                     f"{os.path.join(args.output, 'ccx.log')}")
     sta = [line.split() for line in open(os.path.join(args.output, "mesh.sta"))]
     done = [f for f in sta if len(f) >= 7 and f[0] == "1" and f[2].isdigit()]
     row = {"code": f"ccx {args.element}", "tangent": "symmetric" if args.symmetric_tangent else "whole",

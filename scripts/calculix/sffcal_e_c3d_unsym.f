@@ -19,15 +19,19 @@
 !     the nodal displacements, with engineering shear: B = sym(F^T
 !     grad_0 N) of the Green-Lagrange strain in a step with NLGEOM (F
 !     from the displacements), the small strain otherwise (F = I).
-!     A material named ABAQUSNL... under NLGEOM: umat_abaqusnl.f turns
-!     the symmetric part by U^-1 in each index before ccx assembles it;
-!     D_a is turned alike (sffcal_turn_by_inverse_stretch).
+!     A material named ABAQUSNL...: umat_abaqusnl.f turns the symmetric
+!     part by U^-1 in each index before ccx assembles it, with or
+!     without NLGEOM (U from the strain it hands the UMAT); D_a is
+!     turned alike (sffcal_turn_by_inverse_stretch).
 !
 !     Elements: C3D8, C3D8I, C3D20 and C3D20R, at ccx's own points
 !     (gauss.f) with its own shape functions; nope = their nodes. Other
 !     elements and those with a local orientation keep the symmetric
 !     tangent (said once on stdout): nope = 0, as for an element
-!     without sffcal's material.
+!     without sffcal's material. A point the UMAT has not been called
+!     at (none yet) adds nothing (said once). The "said" flags are SAVEd
+!     and set from ccx's assembly threads: a race can only repeat a
+!     message.
 !
       subroutine sffcal_e_c3d_unsym(co,kon,ipkon,lakonl,nelem,vold,mi,
      &  iperturb,ielorien,norien,ielmat,matname,s,nope)
@@ -41,14 +45,17 @@
 !
       integer kon(*),ipkon(*),nelem,mi(*),iperturb(*),
      &  ielorien(mi(3),*),norien,ielmat(mi(3),*),nope,indexe,mint3d,
-     &  kk,i,j,k,m,jj,ll,found,iflag,said_type,said_orientation
+     &  kk,i,j,k,m,jj,ll,found,iflag,said_type,said_orientation,
+     &  said_point
 !
       real*8 co(3,*),vold(0:mi(2),*),s(60,60),xl(3,23),shp(4,23),
-     &  u(3,23),xsj,xi,et,ze,weight,da(6,6),f(3,3),b(6,60),db(6,60),wj
+     &  u(3,23),xsj,xi,et,ze,weight,da(6,6),f(3,3),b(6,60),db(6,60),wj,
+     &  h(3,3),c(3,3)
 !
-      save said_type,said_orientation
+      save said_type,said_orientation,said_point
       data said_type /0/
       data said_orientation /0/
+      data said_point /0/
 !
       include "gauss.f"
 !
@@ -57,7 +64,14 @@
       if(found.eq.0) return
 !
       if(lakonl(7:8).ne.'  ') then
-        nope=0
+        if(said_type.eq.0) then
+          write(*,*) '*WARNING in sffcal_e_c3d_unsym: element ',
+     &      nelem,' (',lakonl,') is expanded from a shell, beam or ',
+     &      'plane element or layered: it keeps the symmetric part ',
+     &      'of its user material''s tangent'
+          said_type=1
+        endif
+        return
       elseif(lakonl(1:5).eq.'C3D8 ') then
         nope=8
         mint3d=8
@@ -94,18 +108,15 @@
         endif
       endif
 !
-      corotated=(iperturb(2).eq.1).and.
-     &  (matname(ielmat(1,nelem))(1:8).eq.'ABAQUSNL')
+      corotated=matname(ielmat(1,nelem))(1:8).eq.'ABAQUSNL'
+!
+!     the displacements: for B under NLGEOM, for U under ABAQUSNL...
 !
       indexe=ipkon(nelem)
       do i=1,nope
         do j=1,3
           xl(j,i)=co(j,kon(indexe+i))
-          if(iperturb(2).eq.1) then
-            u(j,i)=vold(j,kon(indexe+i))
-          else
-            u(j,i)=0.d0
-          endif
+          u(j,i)=vold(j,kon(indexe+i))
         enddo
       enddo
 !
@@ -118,7 +129,15 @@
       iflag=3
       do kk=1,mint3d
         call sffcal_umat_unsymmetric_part(nelem,kk,da,found)
-        if(found.eq.0) cycle
+        if(found.eq.0) then
+          if(said_point.eq.0) then
+            write(*,*) '*WARNING in sffcal_e_c3d_unsym: element ',
+     &        nelem,' point ',kk,' has no tangent from the UMAT yet:',
+     &        ' it adds no unsymmetric part'
+            said_point=1
+          endif
+          cycle
+        endif
         if(mint3d.eq.8) then
           xi=gauss3d2(1,kk)
           et=gauss3d2(2,kk)
@@ -138,22 +157,34 @@
           call shape8h(xi,et,ze,xl,xsj,shp,iflag)
         endif
 !
-!       F = I + sum_i u_i (x) grad_0 N_i
+!       H = sum_i u_i (x) grad_0 N_i; F = I + H under NLGEOM, else I
 !
         do k=1,3
           do m=1,3
-            if(k.eq.m) then
-              f(k,m)=1.d0
-            else
-              f(k,m)=0.d0
-            endif
+            h(k,m)=0.d0
             do i=1,nope
-              f(k,m)=f(k,m)+u(k,i)*shp(m,i)
+              h(k,m)=h(k,m)+u(k,i)*shp(m,i)
             enddo
+            f(k,m)=0.d0
+            if(iperturb(2).eq.1) f(k,m)=h(k,m)
+            if(k.eq.m) f(k,m)=f(k,m)+1.d0
           enddo
         enddo
 !
-        if(corotated) call sffcal_turn_by_inverse_stretch(f,da)
+!       C = I + 2 E of the strain the UMAT was handed: Green-Lagrange
+!       under NLGEOM (F^T F), the small strain otherwise (I + H + H^T)
+!
+        if(corotated) then
+          do k=1,3
+            do m=1,3
+              c(k,m)=h(k,m)+h(m,k)
+              if(iperturb(2).eq.1) c(k,m)=c(k,m)+h(1,k)*h(1,m)+
+     &          h(2,k)*h(2,m)+h(3,k)*h(3,m)
+              if(k.eq.m) c(k,m)=c(k,m)+1.d0
+            enddo
+          enddo
+          call sffcal_turn_by_inverse_stretch(c,da)
+        endif
 !
 !       B(:,3(i-1)+k): the strain's derivative by node i's u_k
 !
@@ -194,16 +225,16 @@
 !
 !     D_a turned as umat_abaqusnl.f turns the symmetric part: the tensor
 !     A_ijkl = D_a(I(ij),J(kl)) (anisotropic.f's identification) turned
-!     by T = U^-1 in each index, U the right stretch of F: C = F^T F =
-!     Z diag(w) Z^T, U^-1 = Z diag(w^-1/2) Z^T.
+!     by T = U^-1 in each index, U the stretch of C = U^2 (given):
+!     C = Z diag(w) Z^T, U^-1 = Z diag(w^-1/2) Z^T.
 !
-      subroutine sffcal_turn_by_inverse_stretch(f,da)
+      subroutine sffcal_turn_by_inverse_stretch(cin,da)
 !
       implicit none
 !
       integer i,j,k,l,m,n,o,p,ier,matz,nn,iv(3,3),ir(6),ic(6)
 !
-      real*8 f(3,3),da(6,6),c(3,3),w(3),z(3,3),fv1(3),fv2(3),t(3,3),
+      real*8 cin(3,3),da(6,6),c(3,3),w(3),z(3,3),fv1(3),fv2(3),t(3,3),
      &  a(3,3,3,3),sum
 !
       data iv /1,4,5,4,2,6,5,6,3/
@@ -212,7 +243,7 @@
 !
       do i=1,3
         do j=1,3
-          c(i,j)=f(1,i)*f(1,j)+f(2,i)*f(2,j)+f(3,i)*f(3,j)
+          c(i,j)=cin(i,j)
         enddo
       enddo
       nn=3

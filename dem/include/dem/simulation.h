@@ -117,9 +117,6 @@ class Simulation {
   /// contacts of the normal spring's and, with dashpots, the dashpot's force per unit of a wall
   /// move made over one step (coefficient / time step).
   const std::vector<double>& wall_stiffnesses() const { return wall_stiffness_; }
-  /// Each wall's servo state (saved with the state): a stress-held wall's is the engine's; a
-  /// driver that moves a kinematic wall by a servo of its own keeps that servo's here.
-  std::vector<ServoState>& servo_states() { return servo_; }
 
   /// True when the walls form a box (one lower and one upper wall on each axis).
   bool has_box() const { return box_walls_[0][0] >= 0; }

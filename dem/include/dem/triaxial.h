@@ -133,6 +133,8 @@ class TriaxialTest {
   /// y lower, y upper): the engine's, or once after a resume the checkpoint's (a restored engine
   /// has none until it steps).
   std::array<std::array<double, 2>, 4> take_lateral_readings();
+  /// The lateral wall k = 0..3 (x lower, x upper, y lower, y upper), its index in the walls.
+  int lateral_wall(int k) const { return sim_.box_wall(k / 2, k % 2 == 1); }
   bool critical_state(std::size_t* window_start) const;
   CheckpointExtras extras() const;
 

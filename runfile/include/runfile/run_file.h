@@ -83,7 +83,7 @@ struct TestSummary {
   double peak_eta = 0.0, peak_eta_strain = 0.0;
   double critical_eta = 0.0;  ///< mean q/p over the final window (critical if reached)
   double initial_void_ratio = 0.0, final_void_ratio = 0.0;
-  double worst_lateral_error = 0.0;   ///< max |sigma_lateral - sigma_3| / sigma_3 at output rows
+  double worst_lateral_error = 0.0;   ///< max |sigma_wall - target| / target (docs/run-file.md)
   double max_inertial_number = 0.0;
   std::int64_t steps = 0;
   double wall_seconds = 0.0;
