@@ -4,6 +4,7 @@
 #   - the same element (C3D8 against Q1 with full integration), 3.5 % in 70 increments;
 #   - C3D8I against Q1 with B-bar, 3 x 3 x 3 to 5 % in 50 and to 10 % in 100;
 #   - the symmetric part of the tangent alone (as Debian's ccx), 3 x 3 x 3 to 5 % in 50;
+#   - C3D20R, 3 x 3 x 3 to 5 % in 50, whole against symmetric;
 #   - refined meshes, 6 and 10 cells a side, to 5 % in 50;
 #   - the cost of the unsymmetric solve: 10 cells, 0.5 % in 5, whole against symmetric;
 #   - NLGEOM through ABAQUS... and ABAQUSNL..., 10 % in 100, whole against symmetric.
@@ -31,6 +32,8 @@ mesh same_element --element C3D8 --strain 0.035 --steps 70 --fe-mesh "$build/ben
 mesh c3d8i_5 --element C3D8I --fe-mesh "$build/bench/fe_mesh"
 mesh c3d8i_10 --element C3D8I --strain 0.1 --steps 100 --fe-mesh "$build/bench/fe_mesh"
 mesh c3d8i_5_symmetric --element C3D8I --symmetric-tangent
+mesh c3d20r_5 --element C3D20R --fe-mesh "$build/bench/fe_mesh"
+mesh c3d20r_5_symmetric --element C3D20R --symmetric-tangent
 mesh c3d8i_5_6cells --element C3D8I --cells 6 --fe-mesh "$build/bench/fe_mesh"
 mesh c3d8i_5_10cells --element C3D8I --cells 10 --fe-mesh "$build/bench/fe_mesh"
 mesh cost_whole --element C3D8I --cells 10 --strain 0.005 --steps 5

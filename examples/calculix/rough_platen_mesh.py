@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The rough-platen mesh of bench/fe_mesh in CalculiX with sffcal's UMAT, against the deal.II mesh
 (docs/fe.md, "CalculiX"): one eighth of a 50 x 50 x 100 mm specimen on N x N x N elements (C3D8,
-or C3D8I with incompatible modes), symmetry planes x = y = z = 0, sigma_3 on x = L and y = L, the
+C3D8I with incompatible modes, or the 20-node C3D20R), symmetry planes x = y = z = 0, sigma_3 on x = L and y = L, the
 top face moved down and held radially (a rough platen), automatic incrementation at most 1/steps
 of the step. Prints a row: completed increments, Newton iterations, cuts asked through PNEWDT,
 q/p at the platen (its force over the initial area against sigma_3), eps_v (the mean of the
@@ -9,8 +9,8 @@ points' small strains, compression positive), the radial displacement at mid-hei
 x = L, y = 0 [mm]; --csv writes it to a file too.
 
 With --fe-mesh (bench/fe_mesh; ACST, a plain start), deal.II runs the same mesh, steps and strain:
-Q1 with full integration against C3D8 (the same element), Q1 with B-bar against C3D8I (the
-nearest), and the script prints deal.II's row and the differences. The exit status is 1 where ccx
+Q1 with full integration against C3D8 (the same element), Q1 with B-bar against C3D8I and C3D20R
+(the nearest), and the script prints deal.II's row and the differences. The exit status is 1 where ccx
 does not reach the end, where --tolerance is given and q/p, eps_v or the bulge differ by more (q/p
 and the bulge relative, eps_v absolute), or where --max-newton-ratio is given and ccx takes more
 times deal.II's Newton iterations. In equal increments too small for the UMAT to ask for a cut
@@ -35,35 +35,48 @@ import ccx_case
 L, H = 0.025, 0.05  # the eighth's width and height [m]
 
 
+# C3D20R's nodes after its corners: the midpoints of the edges 1-2, 2-3, 3-4, 4-1, 5-6, 6-7, 7-8,
+# 8-5, 1-5, 2-6, 3-7, 4-8 (CalculiX's element library).
+MIDSIDE = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6),
+           (3, 7)]
+
+
 def deck(n, element, strain, steps, field, cards, material, sigma3, nlgeom):
-    node = lambda i, j, k: 1 + i + (n + 1) * (j + (n + 1) * k)
-    lines = ["** sffcal: rough-platen mesh, drained triaxial compression", "*NODE, NSET=NALL"]
-    for k in range(n + 1):
-        for j in range(n + 1):
-            for i in range(n + 1):
-                lines.append(f"{node(i, j, k)}, {L * i / n!r}, {L * j / n!r}, {H * k / n!r}")
-    lines.append(f"*ELEMENT, TYPE={element}, ELSET=EALL")
-    faces_x, faces_y, e = [], [], 0
+    # Nodes on a grid of s = 1 (linear) or 2 (quadratic) points a cell, numbered as on that grid.
+    s = 2 if element.startswith("C3D20") else 1
+    m = s * n
+    node = lambda i, j, k: 1 + i + (m + 1) * (j + (m + 1) * k)
+    elements, used, faces_x, faces_y = [], set(), [], []
     for k in range(n):
         for j in range(n):
             for i in range(n):
-                e += 1
-                c = [node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k)]
-                c += [node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
-                      node(i, j + 1, k + 1)]
-                lines.append(f"{e}, " + ", ".join(map(str, c)))
+                corners = [(i, j, k), (i + 1, j, k), (i + 1, j + 1, k), (i, j + 1, k),
+                           (i, j, k + 1), (i + 1, j, k + 1), (i + 1, j + 1, k + 1), (i, j + 1, k + 1)]
+                points = [tuple(s * x for x in c) for c in corners]
+                if s == 2:
+                    points += [tuple((a + b) // 2 for a, b in zip(points[p], points[q]))
+                               for p, q in MIDSIDE]
+                used.update(points)
+                elements.append([node(*p) for p in points])
                 if i == n - 1:
-                    faces_x.append(e)
+                    faces_x.append(len(elements))
                 if j == n - 1:
-                    faces_y.append(e)
+                    faces_y.append(len(elements))
+    grid = sorted(used, key=lambda g: node(*g))
+    lines = ["** sffcal: rough-platen mesh, drained triaxial compression", "*NODE, NSET=NALL"]
+    lines += [f"{node(*g)}, {L * g[0] / m!r}, {L * g[1] / m!r}, {H * g[2] / m!r}" for g in grid]
+    lines.append(f"*ELEMENT, TYPE={element}, ELSET=EALL")
+    for e, c in enumerate(elements, start=1):  # at most 15 entries on the first line
+        lines.append(f"{e}, " + ", ".join(map(str, c[:15])) + ("," if len(c) > 15 else ""))
+        if len(c) > 15:
+            lines.append(", ".join(map(str, c[15:])))
     nset = lambda name, nodes: [f"*NSET, NSET={name}"] + [
-        ", ".join(map(str, nodes[m:m + 8])) for m in range(0, len(nodes), 8)]
-    grid = [(i, j, k) for k in range(n + 1) for j in range(n + 1) for i in range(n + 1)]
+        ", ".join(map(str, nodes[q:q + 8])) for q in range(0, len(nodes), 8)]
     lines += nset("XMIN", [node(*g) for g in grid if g[0] == 0])
     lines += nset("YMIN", [node(*g) for g in grid if g[1] == 0])
     lines += nset("ZMIN", [node(*g) for g in grid if g[2] == 0])
-    lines += nset("TOP", [node(*g) for g in grid if g[2] == n])
-    lines += nset("EDGE", [node(n, 0, k) for k in range(n + 1)])
+    lines += nset("TOP", [node(*g) for g in grid if g[2] == m])
+    lines += nset("EDGE", [node(*g) for g in grid if g[0] == m and g[1] == 0])
     lines.append(cards.rstrip("\n"))
     lines += [f"*SOLID SECTION, ELSET=EALL, MATERIAL={material}",
               "*AMPLITUDE, NAME=HELD", "0., 1., 1., 1.",
@@ -122,8 +135,9 @@ def run_ccx(args):
                   if len(line.split()) == 8 and line.split()[0].isdigit()]
         row["eps_v"] = -sum(sum(point) for point in points) / len(points)
         blocks = re.split(r"displacements \(vx,vy,vz\) for set EDGE", text)
-        last = [line.split() for line in blocks[-1].splitlines()[2:2 + n + 1]]
-        z0 = [f for f in last if len(f) == 4 and int(f[0]) == 1 + n]  # node (n, 0, 0)
+        last = [line.split() for line in blocks[-1].splitlines()[2:]]
+        corner = 1 + args.cells * (2 if args.element.startswith("C3D20") else 1)  # node (L, 0, 0)
+        z0 = [f for f in last if len(f) == 4 and f[0].isdigit() and int(f[0]) == corner]
         row["bulge_mm"] = 1e3 * float(z0[0][1]) if z0 else float("nan")
     return row
 
@@ -167,7 +181,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ccx_case.add_common_arguments(parser)
     parser.add_argument("--cells", type=int, default=3)
-    parser.add_argument("--element", default="C3D8I", choices=["C3D8", "C3D8I"])
+    parser.add_argument("--element", default="C3D8I", choices=["C3D8", "C3D8I", "C3D20R"])
     parser.add_argument("--strain", type=float, default=0.05)
     parser.add_argument("--steps", type=int, default=50)
     parser.add_argument("--field-tolerance", type=float, default=1e-8,
