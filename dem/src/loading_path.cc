@@ -5,6 +5,21 @@
 #include <stdexcept>
 
 namespace dem {
+namespace {
+
+// The enum value whose config spelling is `name`; throws naming `what` and the accepted spellings.
+template <typename Enum>
+Enum parse_spelling(const std::vector<std::string>& names, const std::string& name,
+                    const char* what) {
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] == name) return static_cast<Enum>(k);
+  std::string accepted;
+  for (const std::string& n : names) accepted += (accepted.empty() ? "\"" : ", \"") + n + "\"";
+  throw std::invalid_argument("unknown " + std::string(what) + " \"" + name + "\" (one of " +
+                              accepted + ")");
+}
+
+}  // namespace
 
 const std::vector<std::string>& loading_path_names() {
   static const std::vector<std::string> names = {
@@ -23,11 +38,8 @@ const std::string& undrained_lateral_name(UndrainedLateral lateral) {
 }
 
 UndrainedLateral parse_undrained_lateral(const std::string& name) {
-  const std::vector<std::string>& names = undrained_lateral_names();
-  for (std::size_t k = 0; k < names.size(); ++k)
-    if (names[k] == name) return static_cast<UndrainedLateral>(k);
-  throw std::invalid_argument("unknown undrained lateral control \"" + name +
-                              "\" (\"equal_strains\" or \"equal_stresses\")");
+  return parse_spelling<UndrainedLateral>(undrained_lateral_names(), name,
+                                          "undrained lateral control");
 }
 
 const std::string& loading_path_name(LoadingPath path) {
@@ -35,12 +47,7 @@ const std::string& loading_path_name(LoadingPath path) {
 }
 
 LoadingPath parse_loading_path(const std::string& name) {
-  const std::vector<std::string>& names = loading_path_names();
-  for (std::size_t k = 0; k < names.size(); ++k)
-    if (names[k] == name) return static_cast<LoadingPath>(k);
-  std::string accepted;
-  for (const std::string& n : names) accepted += (accepted.empty() ? "\"" : ", \"") + n + "\"";
-  throw std::invalid_argument("unknown loading path \"" + name + "\" (one of " + accepted + ")");
+  return parse_spelling<LoadingPath>(loading_path_names(), name, "loading path");
 }
 
 int axial_direction(LoadingPath path) {

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <shared_mutex>
 #include <vector>
 
@@ -18,8 +19,8 @@ using UnsymmetricPart = std::array<double, 15>;
 struct Table {
   // Written by the UMAT calls (ccx's result threads), read by the assembly (its matrix threads).
   std::shared_mutex mutex;
-  std::vector<std::vector<UnsymmetricPart>> points;  // [noel - 1][npt - 1]
-  std::vector<std::vector<bool>> kept;
+  // [noel - 1][npt - 1]; empty where the UMAT has not been called at that point.
+  std::vector<std::vector<std::optional<UnsymmetricPart>>> points;
   bool any = false;
   bool failed = false;  // a part could not be kept: the symmetric path from then on
 };
@@ -47,16 +48,9 @@ void keep_unsymmetric_part(int noel, int npt, const double* ddsdde, int ntens) n
     const std::unique_lock<std::shared_mutex> lock(t.mutex);
     if (t.failed) return;
     const auto e = static_cast<std::size_t>(noel - 1), p = static_cast<std::size_t>(npt - 1);
-    if (t.points.size() <= e) {
-      t.points.resize(e + 1);
-      t.kept.resize(e + 1);
-    }
-    if (t.points[e].size() <= p) {
-      t.points[e].resize(p + 1);
-      t.kept[e].resize(p + 1, false);
-    }
+    if (t.points.size() <= e) t.points.resize(e + 1);
+    if (t.points[e].size() <= p) t.points[e].resize(p + 1);
     t.points[e][p] = part;
-    t.kept[e][p] = true;
     t.any = true;
   } catch (const std::exception& error) {
     t.failed = true;  // written under the lock unless the lock itself failed: then it is said twice
@@ -86,8 +80,8 @@ extern "C" void sffcal_umat_unsymmetric_part_(const int* noel, const int* npt, d
   *found = 0;
   if (*noel < 1 || *npt < 1) return;
   const auto e = static_cast<std::size_t>(*noel - 1), p = static_cast<std::size_t>(*npt - 1);
-  if (e >= t.points.size() || p >= t.points[e].size() || !t.kept[e][p]) return;
-  const UnsymmetricPart& part = t.points[e][p];
+  if (e >= t.points.size() || p >= t.points[e].size() || !t.points[e][p]) return;
+  const UnsymmetricPart& part = *t.points[e][p];
   for (int i = 0; i < kTensors; ++i) {
     d[i + kTensors * i] = 0.0;
     for (int j = i + 1; j < kTensors; ++j) {
